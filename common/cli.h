@@ -1,0 +1,36 @@
+// The command line every stage executable shares (DESIGN.md): --scene --spp --out --width --height
+// --threads --seed, plus the stage's own flags. Exit codes: 0 ok, 1 bad input, 2 bad usage; every
+// failure is one line on stderr.
+#pragma once
+
+#include "common/scene.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace rt {
+
+struct CommonOptions {
+  std::string scene;
+  std::string out;
+  std::optional<int> spp, width, height;
+  std::optional<std::uint64_t> seed;
+  int threads = 0;  // 0 = all cores
+
+  // The scene's render block with the command-line values put over it.
+  RenderSettings settings_for(const SceneDescription& scene) const;
+};
+
+// Parses the command line into `options` (plus whatever `add_stage_flags` registered), then calls
+// `run`. Maps --help to exit 0, usage errors to 2 and InputError to 1, each with one line on stderr
+// that starts with the program name. The output path is checked before `run` is called, so no
+// render is wasted on an unwritable path.
+int run_stage_program(int argc, char** argv, const std::string& program, const std::string& title,
+                      CommonOptions& options, const std::function<void(CLI::App&)>& add_stage_flags,
+                      const std::function<void()>& run);
+
+}  // namespace rt

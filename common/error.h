@@ -1,0 +1,24 @@
+// The two ways a run can fail on purpose, each with its exit code (DESIGN.md, "Command line").
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace rt {
+
+// Bad input: a malformed scene or image file, an unwritable output. Exit code 1.
+// The message is one line that names the file and the problem.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Bad usage: unknown flags, impossible parameters. Exit code 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitBadInput = 1;
+inline constexpr int kExitBadUsage = 2;
+
+}  // namespace rt

@@ -1,0 +1,25 @@
+// Image error metrics used by tests, benchmarks and grading. All of them average over every pixel
+// and every RGB channel, so one number compares two images of the same size.
+#pragma once
+
+#include "common/image.h"
+
+namespace rt {
+
+struct PixelRect {
+  int x0, y0, x1, y1;  // the half-open rectangle [x0, x1) x [y0, y1)
+};
+
+// Mean squared error: mean of (a - b)^2.
+double mse(const Image& image, const Image& reference);
+double rmse(const Image& image, const Image& reference);
+
+// Relative MSE: mean of (a - b)^2 / (b^2 + epsilon). Dividing by the reference's own value
+// weighs dark and bright regions alike; epsilon keeps black reference pixels from dominating
+// (0.01 is the customary value, as in Rousselle et al. 2011 and pbrt-v4's imgtool).
+double relative_mse(const Image& image, const Image& reference, double epsilon = 1e-2);
+
+// Mean colour over a rectangle (e.g. a wall of the Cornell box).
+DVec3 mean_over(const Image& image, PixelRect rect);
+
+}  // namespace rt

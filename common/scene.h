@@ -1,0 +1,93 @@
+// A scene as its JSON file describes it: plain data, no intersection code. Each stage turns this
+// description into what it can render (stage 1: spheres, planes, tori; stage 2 adds triangles).
+// The file format, with every default, is documented in docs/scene-format.md.
+#pragma once
+
+#include "common/camera.h"
+#include "common/math.h"
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace rt {
+
+// What the command line may override (common/cli.h); the scene file gives the defaults.
+struct RenderSettings {
+  int width = 512;
+  int height = 512;
+  int spp = 16;
+  std::uint64_t seed = 0;
+  int max_depth = 5;               // recursion / path depth limit for the later stages
+  bool pixel_center_only = false;  // one ray through each pixel centre instead of area samples
+};
+
+struct Material {
+  std::string name;
+  Color albedo{0.8f};      // diffuse reflectance rho in [0, 1] per channel
+  Color specular{0.0f};    // Blinn-Phong specular reflectance in [0, 1]
+  float shininess = 32.0f; // Blinn-Phong exponent
+  Color emission{0.0f};    // emitted radiance Le, from the front face only
+};
+
+struct Sphere {
+  Vec3 center;
+  float radius;
+};
+struct Plane {
+  Vec3 point;
+  Vec3 normal;  // unit length; the plane is two-sided
+};
+struct Torus {
+  Vec3 center;
+  Vec3 axis;  // unit length; the ring lies in the plane through center perpendicular to axis
+  float major_radius;
+  float minor_radius;
+};
+struct Triangle {
+  std::array<Vec3, 3> vertices;  // outward normal (v1 - v0) x (v2 - v0)
+};
+// Four corners in order. Meshed as (v0, v1, v2) + (v0, v2, v3), which is exact for planar
+// parallelograms and DEFINES the surface otherwise (the Cornell box's red wall is not planar).
+struct Quad {
+  std::array<Vec3, 4> vertices;
+};
+
+using Geometry = std::variant<Sphere, Plane, Torus, Triangle, Quad>;
+
+struct Shape {
+  std::string name;  // optional, for messages
+  Geometry geometry;
+  int material = 0;  // index into SceneDescription::materials
+};
+
+struct PointLight {
+  Vec3 position;
+  Color intensity;  // radiant intensity I, W/sr per channel
+};
+
+struct SceneDescription {
+  std::string source;  // the file it came from, for messages
+  RenderSettings render;
+  CameraSpec camera;
+  Color background{0.0f};  // radiance of rays that escape
+  std::vector<Material> materials;
+  std::vector<Shape> shapes;
+  std::vector<PointLight> lights;
+};
+
+// Throws InputError("FILE: /json/path: problem") for a missing or unreadable file, malformed JSON,
+// a missing field, a wrong type, an unknown key, an unknown material, or a bad or non-finite number.
+SceneDescription load_scene(const std::filesystem::path& path);
+// The same from text already in memory; `source` names it in messages.
+SceneDescription parse_scene(const std::string& text, const std::string& source);
+
+// Largest image side and spp accepted from a scene or the command line: refuses sizes that could
+// not be allocated on the course machines before any memory is spent.
+inline constexpr int kMaxImageSide = 16384;
+inline constexpr int kMaxSpp = 1 << 20;
+
+}  // namespace rt

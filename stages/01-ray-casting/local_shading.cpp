@@ -1,0 +1,48 @@
+#include "01-ray-casting/local_shading.h"
+
+#include "common/task.h"
+
+#include <cmath>
+
+namespace rt {
+
+Color blinn_phong_brdf(const Material& material, Vec3 n, Vec3 wi, Vec3 wo) {
+  // BEGIN TASK stage1.shading.brdf
+  const Color diffuse = material.albedo * kInvPi;
+  if (material.specular == Color(0.0f)) return diffuse;
+  const Vec3 half_vector = glm::normalize(wi + wo);
+  const float cos_h = std::max(0.0f, glm::dot(n, half_vector));
+  const float lobe = (material.shininess + 8.0f) / (8.0f * kPi) * std::pow(cos_h, material.shininess);
+  return diffuse + material.specular * lobe;
+  // PLACEHOLDER
+  // report_unfinished_task("stage1.shading.brdf");
+  // return material.albedo * kInvPi;
+  // END TASK
+}
+
+Color shade_local(const RayCastingScene& scene, const Hit& hit, Vec3 to_viewer) {
+  const Material& material = scene.materials()[size_t(hit.material)];
+  Color radiance = hit.front_face ? material.emission : Color(0.0f);
+  // BEGIN TASK stage1.shading.local
+  const Vec3 shadow_origin = hit.point + kShadowRayOffset * hit.normal;
+  for (const PointLight& light : scene.lights()) {
+    const Vec3 to_light = light.position - hit.point;
+    const float distance_squared = glm::dot(to_light, to_light);
+    const float distance = std::sqrt(distance_squared);
+    const Vec3 wi = to_light / distance;
+    const float cos_theta = glm::dot(hit.normal, wi);
+    if (cos_theta <= 0.0f) continue;  // the light is behind the surface
+    const Ray shadow_ray{shadow_origin, glm::normalize(light.position - shadow_origin)};
+    if (scene.occluded(shadow_ray, Interval{0.0f, glm::length(light.position - shadow_origin)}))
+      continue;
+    radiance += blinn_phong_brdf(material, hit.normal, wi, to_viewer) * light.intensity *
+                (cos_theta / distance_squared);
+  }
+  // PLACEHOLDER
+  // report_unfinished_task("stage1.shading.local");
+  // radiance += material.albedo * 0.5f;  // flat colour: shapes stay visible
+  // END TASK
+  return radiance;
+}
+
+}  // namespace rt

@@ -1,0 +1,34 @@
+#include "01-ray-casting/ray_caster.h"
+
+#include "01-ray-casting/local_shading.h"
+#include "common/error.h"
+
+namespace rt {
+
+DebugView debug_view_from_name(const std::string& name) {
+  if (name == "none") return DebugView::none;
+  if (name == "normal") return DebugView::normal;
+  if (name == "depth") return DebugView::depth;
+  if (name == "albedo") return DebugView::albedo;
+  throw UsageError("unknown debug view '" + name + "' (known: none, normal, depth, albedo)");
+}
+
+Color cast_ray(const RayCastingScene& scene, const Ray& ray, DebugView view) {
+  const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
+  if (!hit) return view == DebugView::none ? scene.background() : Color(0.0f);
+  switch (view) {
+    case DebugView::none:
+      return shade_local(scene, *hit, -ray.direction);
+    case DebugView::normal: {
+      const Vec3 outward = hit->front_face ? hit->normal : -hit->normal;
+      return 0.5f * (outward + 1.0f);
+    }
+    case DebugView::depth:
+      return Color(hit->t);
+    case DebugView::albedo:
+      return scene.materials()[size_t(hit->material)].albedo;
+  }
+  return Color(0.0f);
+}
+
+}  // namespace rt

@@ -1,0 +1,68 @@
+#include "common/frame.h"
+#include "common/interval.h"
+#include "common/hit.h"
+#include "common/random.h"
+
+#include <gtest/gtest.h>
+
+namespace rt {
+namespace {
+
+void expect_orthonormal_right_handed(const Frame& f) {
+  EXPECT_NEAR(glm::length(f.s), 1.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(f.t), 1.0f, 1e-6f);
+  EXPECT_NEAR(glm::dot(f.s, f.t), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::dot(f.s, f.n), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::dot(f.t, f.n), 0.0f, 1e-6f);
+  const Vec3 c = glm::cross(f.s, f.t);
+  EXPECT_NEAR(glm::length(c - f.n), 0.0f, 1e-5f) << "s x t must equal n (right-handed)";
+}
+
+TEST(Frame, OrthonormalAndRightHandedForManyNormals) {
+  Rng rng(7, 0, 0);
+  for (int i = 0; i < 10000; ++i) {
+    const Vec3 n = glm::normalize(Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f);
+    expect_orthonormal_right_handed(Frame::from_normal(n));
+  }
+}
+
+TEST(Frame, PolesAndAxes) {
+  // n.z = -1 is where naive constructions divide by zero.
+  for (Vec3 n : {Vec3(0, 0, 1), Vec3(0, 0, -1), Vec3(1, 0, 0), Vec3(0, -1, 0),
+                 glm::normalize(Vec3(1e-8f, 0, -1))})
+    expect_orthonormal_right_handed(Frame::from_normal(n));
+}
+
+TEST(Frame, LocalWorldRoundTrip) {
+  const Frame f = Frame::from_normal(glm::normalize(Vec3(0.3f, -0.5f, 0.8f)));
+  const Vec3 v(0.2f, 0.7f, -0.4f);
+  const Vec3 back = f.to_world(f.to_local(v));
+  EXPECT_NEAR(glm::length(back - v), 0.0f, 1e-6f);
+  EXPECT_NEAR(f.to_local(f.n).z, 1.0f, 1e-6f);
+}
+
+TEST(Interval, OpenAtBothEnds) {
+  const Interval i{1.0f, 2.0f};
+  EXPECT_FALSE(i.surrounds(1.0f));
+  EXPECT_FALSE(i.surrounds(2.0f));
+  EXPECT_TRUE(i.surrounds(1.5f));
+  EXPECT_TRUE(i.contains(1.0f));
+  EXPECT_FALSE(i.surrounds(std::nanf("")));
+  EXPECT_FALSE(Interval::positive().surrounds(kInfinity));
+  EXPECT_FALSE(Interval::positive().surrounds(0.0f));
+  EXPECT_TRUE(Interval{}.is_empty());
+}
+
+TEST(Hit, FrontFaceRule) {
+  Hit hit;
+  const Ray towards_minus_z{Vec3(0, 0, 5), Vec3(0, 0, -1)};
+  hit.set_face_normal(towards_minus_z, Vec3(0, 0, 1));
+  EXPECT_TRUE(hit.front_face);
+  EXPECT_EQ(hit.normal, Vec3(0, 0, 1));
+  hit.set_face_normal(towards_minus_z, Vec3(0, 0, -1));  // hitting the back side
+  EXPECT_FALSE(hit.front_face);
+  EXPECT_EQ(hit.normal, Vec3(0, 0, 1)) << "the normal must face the incoming ray";
+}
+
+}  // namespace
+}  // namespace rt

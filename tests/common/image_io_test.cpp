@@ -1,0 +1,137 @@
+#include "common/color.h"
+#include "common/error.h"
+#include "common/image_io.h"
+
+#include "support/test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+namespace rt {
+namespace {
+
+using testing::ScratchDir;
+
+Image test_pattern() {
+  Image image(3, 2);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x) image.at(x, y) = Color(float(x), float(y), 0.25f * float(x + 3 * y));
+  image.at(2, 1) = Color(1e-30f, 3.4e38f, -2.5f);  // extremes survive a linear float format
+  return image;
+}
+
+TEST(SrgbCurve, KnownValues) {
+  EXPECT_EQ(srgb_encode(0.0f), 0.0f);
+  EXPECT_EQ(srgb_encode(1.0f), 1.0f);
+  EXPECT_NEAR(srgb_encode(0.0031308f), 0.04045f, 1e-5f);  // where the two pieces meet
+  EXPECT_NEAR(srgb_encode(0.001f), 0.01292f, 1e-7f);      // linear segment, slope 12.92
+  EXPECT_NEAR(srgb_encode(0.18f), 0.46135f, 1e-4f);       // mid grey
+  EXPECT_NEAR(srgb_encode(0.5f), 0.73536f, 1e-4f);        // not 0.5^(1/2.2) = 0.72974
+  EXPECT_EQ(srgb_to_byte(0.5f), 188);
+  // Every 8-bit code survives decode-then-encode.
+  for (int code = 0; code < 256; ++code) EXPECT_EQ(srgb_to_byte(srgb_decode(code / 255.0f)), code);
+}
+
+TEST(SrgbCurve, ClampsAndMapsNanToBlack) {
+  EXPECT_EQ(srgb_encode(-1.0f), 0.0f);
+  EXPECT_EQ(srgb_encode(7.0f), 1.0f);
+  EXPECT_EQ(srgb_encode(std::nanf("")), 0.0f);
+  EXPECT_EQ(srgb_to_byte(kInfinity), 255);
+}
+
+TEST(SrgbCurve, DecodeInvertsEncode) {
+  for (float v = 0.0f; v <= 1.0f; v += 1.0f / 1024.0f)
+    EXPECT_NEAR(srgb_decode(srgb_encode(v)), v, 2e-6f + 1e-5f * v);
+}
+
+TEST(Pfm, RoundTripIsBitExact) {
+  ScratchDir dir;
+  const Image image = test_pattern();
+  write_image(dir / "a.pfm", image);
+  EXPECT_EQ(read_pfm(dir / "a.pfm"), image);
+}
+
+TEST(Pfm, LayoutFollowsTheSpec) {
+  // Header "PF\n3 2\n-1.0\n" (negative scale: little-endian), then the BOTTOM row first.
+  const Image image = test_pattern();
+  const std::vector<char> bytes = encode_pfm(image);
+  const std::string header = "PF\n3 2\n-1.0\n";
+  ASSERT_EQ(bytes.size(), header.size() + 3 * 2 * 3 * sizeof(float));
+  EXPECT_EQ(std::string(bytes.begin(), bytes.begin() + long(header.size())), header);
+  float first[3];
+  std::memcpy(first, bytes.data() + header.size(), sizeof first);
+  EXPECT_EQ(Color(first[0], first[1], first[2]), image.at(0, 1)) << "first stored pixel is bottom-left";
+}
+
+TEST(Pfm, ReadsBigEndianAndGreyscale) {
+  ScratchDir dir;
+  // 2x1 greyscale, big-endian (positive scale): bottom row = the only row.
+  std::string text = "Pf\n2 1\n1.0\n";
+  for (float v : {0.5f, 2.0f}) {
+    const auto bits = __builtin_bswap32(std::bit_cast<std::uint32_t>(v));
+    text.append(reinterpret_cast<const char*>(&bits), 4);
+  }
+  testing::write_text(dir / "g.pfm", text);
+  const Image image = read_pfm(dir / "g.pfm");
+  ASSERT_EQ(image.width(), 2);
+  EXPECT_EQ(image.at(0, 0), Color(0.5f));
+  EXPECT_EQ(image.at(1, 0), Color(2.0f));
+}
+
+TEST(Pfm, BadFilesGiveInputErrorsNamingTheFile) {
+  ScratchDir dir;
+  testing::write_text(dir / "truncated.pfm", "PF\n4 4\n-1.0\n1234");
+  testing::write_text(dir / "nonsense.pfm", "P6\n4 4\n255\n");
+  testing::write_text(dir / "huge.pfm", "PF\n999999999 999999999\n-1.0\n");
+  for (const char* name : {"truncated.pfm", "nonsense.pfm", "huge.pfm", "missing.pfm"}) {
+    try {
+      read_pfm(dir / name);
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(Png, WritesAValidPngOfTheRightSize) {
+  ScratchDir dir;
+  write_image(dir / "a.png", Image(5, 3, Color(0.5f)));
+  const std::string bytes = testing::read_text(dir / "a.png");
+  ASSERT_GT(bytes.size(), 24u);
+  EXPECT_EQ(bytes.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  // IHDR width and height, big-endian, at bytes 16..23.
+  EXPECT_EQ(bytes[19], 5);
+  EXPECT_EQ(bytes[23], 3);
+}
+
+TEST(ImageFiles, FormatComesFromTheEnding) {
+  EXPECT_EQ(image_format_for("x.png"), ImageFormat::png);
+  EXPECT_EQ(image_format_for("dir.d/x.pfm"), ImageFormat::pfm);
+  EXPECT_THROW(image_format_for("x.jpg"), UsageError);
+  EXPECT_THROW(image_format_for("png"), UsageError);
+}
+
+TEST(ImageFiles, FailedWriteLeavesNoFileAndKeepsTheOldOne) {
+  ScratchDir dir;
+  EXPECT_THROW(write_image(dir / "no-such-dir" / "a.png", Image(2, 2)), InputError);
+  EXPECT_FALSE(std::filesystem::exists(dir / "no-such-dir"));
+
+  write_image(dir / "keep.pfm", Image(1, 1, Color(3.0f)));
+  std::filesystem::permissions(dir.path(), std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+  if (::access(dir.path().c_str(), W_OK) == 0) GTEST_SKIP() << "running as root: permissions are not enforced";
+  EXPECT_THROW(write_image(dir / "keep.pfm", Image(1, 1, Color(4.0f))), InputError);
+  EXPECT_EQ(read_pfm(dir / "keep.pfm").at(0, 0), Color(3.0f));
+}
+
+TEST(ImageFiles, AtomicWriteLeavesNoTemporaryFiles) {
+  ScratchDir dir;
+  write_image(dir / "a.png", Image(4, 4));
+  write_image(dir / "a.png", Image(8, 8));
+  int files = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
+  EXPECT_EQ(files, 1);
+}
+
+}  // namespace
+}  // namespace rt

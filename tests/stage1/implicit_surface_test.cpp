@@ -1,0 +1,156 @@
+#include "01-ray-casting/implicit_surface.h"
+#include "common/random.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace rt {
+namespace {
+
+// Ring radius R = 2, tube radius r = 0.5, lying in the xz-plane.
+const TorusSurface kTorus(Torus{Vec3(0), Vec3(0, 1, 0), 2.0f, 0.5f});
+
+TEST(Torus, DistanceIsExactAtKnownPoints) {
+  EXPECT_FLOAT_EQ(kTorus.distance(Vec3(2, 0, 0)), -0.5f);    // on the core circle
+  EXPECT_FLOAT_EQ(kTorus.distance(Vec3(0, 0, 0)), 1.5f);     // centre of the hole
+  EXPECT_FLOAT_EQ(kTorus.distance(Vec3(0, 0, -4)), 1.5f);    // outside the ring
+  EXPECT_FLOAT_EQ(kTorus.distance(Vec3(2, 3, 0)), 2.5f);     // above the tube
+  EXPECT_NEAR(kTorus.distance(Vec3(0, 5, 0)), std::sqrt(29.0f) - 0.5f, 1e-6f);  // on the axis
+}
+
+TEST(Torus, GradientIsTheTrueDerivative) {
+  // A central difference of the distance agrees with the gradient (length 1 for a distance).
+  const Vec3 p(1.1f, 0.7f, -2.3f);
+  const float h = 1e-3f;
+  const Vec3 numeric((kTorus.distance(p + Vec3(h, 0, 0)) - kTorus.distance(p - Vec3(h, 0, 0))) / (2 * h),
+                     (kTorus.distance(p + Vec3(0, h, 0)) - kTorus.distance(p - Vec3(0, h, 0))) / (2 * h),
+                     (kTorus.distance(p + Vec3(0, 0, h)) - kTorus.distance(p - Vec3(0, 0, h))) / (2 * h));
+  EXPECT_NEAR(glm::length(kTorus.gradient(p) - numeric), 0.0f, 1e-3f);
+  EXPECT_NEAR(glm::length(kTorus.gradient(p)), 1.0f, 1e-6f);
+}
+
+TEST(Torus, GradientIsTheOutwardNormal) {
+  const Vec3 n = glm::normalize(kTorus.gradient(Vec3(0, 0, -2.5f)));
+  EXPECT_NEAR(glm::length(n - Vec3(0, 0, -1)), 0.0f, 1e-6f);
+  const Vec3 top = glm::normalize(kTorus.gradient(Vec3(2, 0.5f, 0)));
+  EXPECT_NEAR(glm::length(top - Vec3(0, 1, 0)), 0.0f, 1e-6f);
+  EXPECT_TRUE(is_finite(kTorus.gradient(Vec3(0, 1, 0)))) << "defined on the axis too";
+}
+
+TEST(Torus, HitsFromOutside) {
+  const auto side = intersect_implicit(kTorus, Ray{Vec3(0, 0, -10), Vec3(0, 0, 1)}, Interval::positive());
+  ASSERT_TRUE(side);
+  EXPECT_NEAR(side->t, 7.5f, 1e-5f);
+  const auto top = intersect_implicit(kTorus, Ray{Vec3(2, 5, 0), Vec3(0, -1, 0)}, Interval::positive());
+  ASSERT_TRUE(top);
+  EXPECT_NEAR(top->t, 4.5f, 1e-5f);
+}
+
+TEST(Torus, RayThroughTheHoleMisses) {
+  EXPECT_FALSE(intersect_implicit(kTorus, Ray{Vec3(0, 5, 0), Vec3(0, -1, 0)}, Interval::positive()));
+  EXPECT_FALSE(intersect_implicit(kTorus, Ray{Vec3(-10, 3, 0), Vec3(1, 0, 0)}, Interval::positive()));
+}
+
+TEST(Torus, HitsFromInsideTheTube) {
+  const auto hit = intersect_implicit(kTorus, Ray{Vec3(2, 0, 0), Vec3(0, 1, 0)}, Interval::positive());
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->t, 0.5f, 1e-5f);
+}
+
+TEST(Torus, NearestOfFourRootsAndTheRange) {
+  // Along the x axis from x = -10 the ray crosses the surface at x = -2.5, -1.5, 1.5, 2.5.
+  const Ray ray{Vec3(-10, 0, 0), Vec3(1, 0, 0)};
+  const auto first = intersect_implicit(kTorus, ray, Interval::positive());
+  ASSERT_TRUE(first);
+  EXPECT_NEAR(first->t, 7.5f, 1e-5f);
+  const auto third = intersect_implicit(kTorus, ray, Interval{9.0f, kInfinity});
+  ASSERT_TRUE(third);
+  EXPECT_NEAR(third->t, 11.5f, 1e-5f);
+  EXPECT_FALSE(intersect_implicit(kTorus, ray, Interval{0.0f, 7.0f}));
+}
+
+// The torus's exact signed distance, in double.
+double distance_double(const DVec3& p) {
+  return std::hypot(std::hypot(p.x, p.z) - 2.0, p.y) - 0.5;
+}
+
+// Nearest root along the ray by a fine scan for a sign change and bisection, all in double.
+// Returns -1 for a miss. `grazing` is set when, before that root, the distance along the ray has a
+// local minimum within 2e-3 of zero: a near-tangent ray whose answer float cannot settle.
+double reference_root(const Ray& ray, bool& grazing) {
+  const DVec3 o(ray.origin), d(ray.direction);
+  constexpr int kSteps = 40000;
+  const double t_end = 30.0, dt = t_end / kSteps;
+  double before = distance_double(o), previous = distance_double(o + dt * d);
+  grazing = false;
+  for (int i = 2; i <= kSteps; ++i) {
+    const double t = dt * i;
+    const double value = distance_double(o + t * d);
+    if (previous < before && previous <= value && std::abs(previous) < 2e-3) grazing = true;
+    if ((value < 0.0) != (previous < 0.0)) {
+      double lo = t - dt, hi = t;
+      for (int k = 0; k < 60; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        ((distance_double(o + mid * d) < 0.0) == (previous < 0.0) ? lo : hi) = mid;
+      }
+      return 0.5 * (lo + hi);
+    }
+    before = previous;
+    previous = value;
+  }
+  return -1.0;
+}
+
+TEST(Torus, AgreesWithADoublePrecisionReferenceOnRandomRays) {
+  Rng rng(99, 0, 0);
+  int compared = 0;
+  for (int i = 0; i < 2000; ++i) {
+    // From a random point on a sphere of radius 8 towards a random point in the torus's box.
+    const Vec3 from = 8.0f * glm::normalize(Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f);
+    const Vec3 to = Vec3(rng.uniform() * 5 - 2.5f, rng.uniform() - 0.5f, rng.uniform() * 5 - 2.5f);
+    const Ray ray{from, glm::normalize(to - from)};
+    bool grazing = false;
+    const double expected = reference_root(ray, grazing);
+    const auto hit = intersect_implicit(kTorus, ray, Interval::positive());
+    if (grazing) continue;  // tangent: too close to call in float
+    ++compared;
+    ASSERT_EQ(hit.has_value(), expected >= 0.0) << "ray " << i;
+    if (hit) {
+      // On the surface to 1e-5 scene units (4e-6 of the torus's size), measured in double...
+      const DVec3 point = DVec3(ray.origin) + double(hit->t) * DVec3(ray.direction);
+      EXPECT_LT(std::abs(distance_double(point)), 1e-5) << "ray " << i;
+      // ...and on the NEAREST root, not a later crossing.
+      EXPECT_NEAR(hit->t, expected, 1e-3) << "ray " << i;
+    }
+  }
+  EXPECT_GT(compared, 1900);
+}
+
+TEST(Torus, TiltedAndMovedTorusGivesTheSameDistances) {
+  // The same ray, rotated and moved with the torus, must hit at the same t.
+  const Vec3 axis = glm::normalize(Vec3(1, 1, 0));
+  const Vec3 centre(3, -2, 7);
+  const TorusSurface tilted(Torus{centre, axis, 2.0f, 0.5f});
+  // Rotation taking +y to axis: about z by -45 degrees. It takes +x to (1, -1, 0)/sqrt 2.
+  const Vec3 x_axis = glm::normalize(Vec3(1, -1, 0));
+  const Ray ray{centre - 10.0f * x_axis, x_axis};
+  const auto hit = intersect_implicit(tilted, ray, Interval::positive());
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->t, 7.5f, 1e-5f);
+}
+
+TEST(Torus, GrazingRaysTerminateWithoutNan) {
+  // Rays skimming the top of the tube (y = r): sphere tracing slows down; it must still end.
+  for (float dy : {0.0f, 1e-7f, 1e-4f, -1e-4f}) {
+    const auto hit = intersect_implicit(kTorus, Ray{Vec3(-10, 0.5f + dy, 0), glm::normalize(Vec3(1, 0, 0))},
+                                        Interval::positive());
+    if (hit) {
+      EXPECT_TRUE(std::isfinite(hit->t));
+      EXPECT_LE(hit->steps, kMaxSphereTracingSteps);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rt
