@@ -12,6 +12,7 @@ Ray generate_camera_ray(const PinholeCamera& camera, Vec2 film_point) {
   return Ray{camera.position, glm::normalize(camera.forward + sx * camera.right + sy * camera.up)};
   // PLACEHOLDER
   // report_unfinished_task("stage1.camera.ray");
+  // (void)film_point;
   // return Ray{camera.position, camera.forward};
   // END TASK
 }

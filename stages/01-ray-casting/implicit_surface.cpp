@@ -86,6 +86,7 @@ std::optional<ImplicitHit> intersect_implicit(const ImplicitSurface& surface, co
   return std::nullopt;
   // PLACEHOLDER
   // report_unfinished_task("stage1.implicit.intersect");
+  // (void)surface, (void)ray, (void)range;
   // return std::nullopt;
   // END TASK
 }

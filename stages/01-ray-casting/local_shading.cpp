@@ -16,6 +16,7 @@ Color blinn_phong_brdf(const Material& material, Vec3 n, Vec3 wi, Vec3 wo) {
   return diffuse + material.specular * lobe;
   // PLACEHOLDER
   // report_unfinished_task("stage1.shading.brdf");
+  // (void)n, (void)wi, (void)wo;
   // return material.albedo * kInvPi;
   // END TASK
 }
@@ -40,6 +41,7 @@ Color shade_local(const RayCastingScene& scene, const Hit& hit, Vec3 to_viewer) 
   }
   // PLACEHOLDER
   // report_unfinished_task("stage1.shading.local");
+  // (void)to_viewer;
   // radiance += material.albedo * 0.5f;  // flat colour: shapes stay visible
   // END TASK
   return radiance;

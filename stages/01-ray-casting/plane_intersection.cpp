@@ -13,6 +13,7 @@ std::optional<float> intersect_plane(const Ray& ray, const Plane& plane, Interva
   return t;
   // PLACEHOLDER
   // report_unfinished_task("stage1.plane.intersect");
+  // (void)ray, (void)plane, (void)range;
   // return std::nullopt;
   // END TASK
 }

@@ -29,6 +29,7 @@ std::optional<float> intersect_sphere_textbook(const Ray& ray, const Sphere& sph
   return nearest_in((-b - root) / (2.0f * a), (-b + root) / (2.0f * a), range);
   // PLACEHOLDER
   // report_unfinished_task("stage1.sphere.textbook");
+  // (void)ray, (void)sphere, (void)range;
   // return std::nullopt;
   // END TASK
 }
@@ -51,6 +52,7 @@ std::optional<Interval> sphere_span(const Ray& ray, const Sphere& sphere) {
   return Interval{t0, t1};
   // PLACEHOLDER
   // report_unfinished_task("stage1.sphere.stable");
+  // (void)ray, (void)sphere;
   // return std::nullopt;
   // END TASK
 }

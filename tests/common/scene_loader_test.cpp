@@ -132,6 +132,9 @@ std::string scene_with_shape(const std::string& shape) {
 }
 const std::string kSphere = R"({"type": "sphere", "center": [0,0,5], "radius": 1, "material": "m"})";
 
+// Names the case in test listings instead of dumping its bytes.
+void PrintTo(const BrokenScene& c, std::ostream* out) { *out << c.what; }
+
 class BrokenSceneTest : public ::testing::TestWithParam<BrokenScene> {};
 
 TEST_P(BrokenSceneTest, FailsWithAClearMessage) {

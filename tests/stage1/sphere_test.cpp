@@ -4,18 +4,21 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <functional>
 
 namespace rt {
 namespace {
 
-using SphereFn = std::function<std::optional<float>(const Ray&, const Sphere&, Interval)>;
+struct SphereForm {
+  const char* name;
+  SphereIntersectFn intersect;
+};
+void PrintTo(const SphereForm& form, std::ostream* out) { *out << form.name; }
 
 // Both formulas must pass the exact cases; only the far-sphere precision test tells them apart.
-class BothSphereForms : public ::testing::TestWithParam<std::pair<const char*, SphereFn>> {
+class BothSphereForms : public ::testing::TestWithParam<SphereForm> {
  protected:
   std::optional<float> hit(const Ray& ray, const Sphere& sphere, Interval range = Interval::positive()) {
-    return GetParam().second(ray, sphere, range);
+    return GetParam().intersect(ray, sphere, range);
   }
 };
 
@@ -83,9 +86,9 @@ TEST_P(BothSphereForms, NonNormalizedDirectionsScaleT) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Sphere, BothSphereForms,
-                         ::testing::Values(std::pair<const char*, SphereFn>{"textbook", intersect_sphere_textbook},
-                                           std::pair<const char*, SphereFn>{"stable", intersect_sphere_stable}),
-                         [](const auto& info) { return std::string(info.param.first); });
+                         ::testing::Values(SphereForm{"textbook", intersect_sphere_textbook},
+                                           SphereForm{"stable", intersect_sphere_stable}),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Sphere, NormalIsOutwardAndUnit) {
   const Vec3 n = sphere_normal(Sphere{Vec3(1, 2, 3), 2.0f}, Vec3(1, 2, 5));
