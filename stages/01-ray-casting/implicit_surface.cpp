@@ -1,6 +1,7 @@
 #include "01-ray-casting/implicit_surface.h"
 
 #include "01-ray-casting/sphere_intersection.h"
+#include "common/frame.h"
 #include "common/task.h"
 
 #include <cmath>
@@ -21,7 +22,7 @@ Vec3 TorusSurface::gradient(Vec3 p) const {
   const float rho = glm::length(radial);
   // On the axis every direction away from it is equally "radial"; any choice is a valid
   // subgradient there.
-  const Vec3 radial_dir = rho > 0.0f ? radial / rho : glm::normalize(glm::cross(torus_.axis, Vec3(0.57735f)));
+  const Vec3 radial_dir = rho > 0.0f ? radial / rho : Frame::from_normal(torus_.axis).s;
   // f = |q| - r with q = (rho - R, h), so grad f = q / |q| written back in 3-D.
   const Vec3 q = (rho - torus_.major_radius) * radial_dir + h * torus_.axis;
   const float length = glm::length(q);

@@ -33,8 +33,9 @@ Color shade_local(const RayCastingScene& scene, const Hit& hit, Vec3 to_viewer) 
     const Vec3 wi = to_light / distance;
     const float cos_theta = glm::dot(hit.normal, wi);
     if (cos_theta <= 0.0f) continue;  // the light is behind the surface
-    const Ray shadow_ray{shadow_origin, glm::normalize(light.position - shadow_origin)};
-    if (scene.occluded(shadow_ray, Interval{0.0f, glm::length(light.position - shadow_origin)}))
+    const Vec3 shadow_span = light.position - shadow_origin;
+    const float shadow_length = glm::length(shadow_span);
+    if (scene.occluded(Ray{shadow_origin, shadow_span / shadow_length}, Interval{0.0f, shadow_length}))
       continue;
     radiance += blinn_phong_brdf(material, hit.normal, wi, to_viewer) * light.intensity *
                 (cos_theta / distance_squared);

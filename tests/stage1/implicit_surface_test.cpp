@@ -36,6 +36,12 @@ TEST(Torus, GradientIsTheOutwardNormal) {
   const Vec3 top = glm::normalize(kTorus.gradient(Vec3(2, 0.5f, 0)));
   EXPECT_NEAR(glm::length(top - Vec3(0, 1, 0)), 0.0f, 1e-6f);
   EXPECT_TRUE(is_finite(kTorus.gradient(Vec3(0, 1, 0)))) << "defined on the axis too";
+  const TorusSurface diagonal(Torus{Vec3(0), glm::normalize(Vec3(1, 1, 1)), 2.0f, 0.5f});
+  // At the centre f = sqrt(R^2 + h^2) - r is flat along the axis and falls at rate 1 in every
+  // radial direction: a valid gradient there is a unit vector perpendicular to the axis.
+  const Vec3 at_centre = diagonal.gradient(Vec3(0.0f));
+  EXPECT_NEAR(glm::length(at_centre), 1.0f, 1e-6f);
+  EXPECT_NEAR(glm::dot(at_centre, glm::normalize(Vec3(1, 1, 1))), 0.0f, 1e-6f);
 }
 
 TEST(Torus, HitsFromOutside) {
