@@ -1,5 +1,5 @@
 // Writes the CSV behind docs/charts/stage1-sphere-precision.png: for a unit sphere at distance D
-// (1 to 1e6 radii), the textbook and the stable ray-sphere formulas' wrong hit/miss fraction and
+// (2 to 1e6 radii), the textbook and the stable ray-sphere formulas' wrong hit/miss fraction and
 // relative error in t against long double, next to their cost in ns per call, all from one run.
 //   usage: sphere_precision [OUT.csv]        (stdout without an argument)
 #include "01-ray-casting/sphere_intersection.h"
@@ -43,9 +43,11 @@ int main(int argc, char** argv) {
   const Formula formulas[] = {{"textbook", intersect_sphere_textbook}, {"stable", intersect_sphere_stable}};
   std::fprintf(out, "distance_over_radius,formula,rays,wrong_fraction,median_relative_error,"
                     "max_relative_error,ns_per_call\n");
-  for (int step = 0; step <= 12; ++step) {  // D = 10^(step / 2): 1, 3.16, 10, ..., 1e6
-    const float distance = std::pow(10.0f, 0.5f * float(step));
-    const FarSphereRays setup = make_far_sphere_rays(std::max(distance, 2.0f), 100'000, 1234);
+  // D = 10^(step / 2) = 3.16, 10, ..., 1e6, and D = 2 in place of 1: at D = 1 the camera would
+  // sit on the sphere itself.
+  for (int step = 0; step <= 12; ++step) {
+    const float distance = std::max(std::pow(10.0f, 0.5f * float(step)), 2.0f);
+    const FarSphereRays setup = make_far_sphere_rays(distance, 100'000, 1234);
     for (const Formula& f : formulas) {
       const SpherePrecision p = measure_sphere_precision(f.fn, setup);
       std::fprintf(out, "%g,%s,%d,%.6g,%.6g,%.6g,%.3f\n", double(setup.sphere.center.z), f.name,
