@@ -15,7 +15,14 @@ RenderSettings CommonOptions::settings_for(const SceneDescription& scene) const 
   if (width) s.width = *width;
   if (height) s.height = *height;
   if (seed) s.seed = *seed;
+  if (max_depth) s.max_depth = *max_depth;
   return s;
+}
+
+void add_max_depth_flag(CLI::App& app, CommonOptions& options) {
+  app.add_option("--max-depth", options.max_depth,
+                 "Recursion depth limit: bounces followed before a path stops (default: the scene's)")
+      ->check(CLI::Range(0, 1000));
 }
 
 int run_stage_program(int argc, char** argv, const std::string& program, const std::string& title,

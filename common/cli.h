@@ -19,11 +19,15 @@ struct CommonOptions {
   std::string out;
   std::optional<int> spp, width, height;
   std::optional<std::uint64_t> seed;
+  std::optional<int> max_depth;  // registered by the stages that recurse (add_max_depth_flag)
   int threads = 0;  // 0 = all cores
 
   // The scene's render block with the command-line values put over it.
   RenderSettings settings_for(const SceneDescription& scene) const;
 };
+
+// --max-depth, for the stage programs that follow rays recursively (stage 2 on).
+void add_max_depth_flag(CLI::App& app, CommonOptions& options);
 
 // Parses the command line into `options` (plus whatever `add_stage_flags` registered), then calls
 // `run`. Maps --help to exit 0, usage errors to 2 and InputError to 1, each with one line on stderr

@@ -12,15 +12,23 @@ struct Hit {
   // Unit normal on the side the ray came from (opposite the ray), so shading never has to ask
   // which side it is on; front_face records whether that is the outward side.
   Vec3 normal{0.0f};
+  // The normal shading uses: the geometric normal, or one interpolated from a mesh's vertex
+  // normals (stage 2), always turned to the same side as `normal`.
+  Vec3 shading_normal{0.0f};
+  // Bound on the rounding error of `point`, per coordinate: the true surface point lies in the box
+  // point +- point_error. Stage 2 fills it in and offsets secondary rays by it; zero means unknown.
+  Vec3 point_error{0.0f};
   bool front_face = true;
   int material = -1;
   int primitive = -1;  // index of the shape in its scene, for debug output and tests
+  int triangle = -1;   // which triangle of a mesh shape, -1 for other shapes
 
   // The front-face rule, in one place: the ray hits the front (outward) side when it travels
   // against the outward normal.
   void set_face_normal(const Ray& ray, Vec3 outward_normal) {
     front_face = glm::dot(ray.direction, outward_normal) < 0.0f;
     normal = front_face ? outward_normal : -outward_normal;
+    shading_normal = normal;
   }
 };
 

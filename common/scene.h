@@ -5,10 +5,16 @@
 
 #include "common/camera.h"
 #include "common/math.h"
+#include "common/transform.h"
+#include "common/triangle_mesh.h"
+
+#include <glm/common.hpp>
 
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -25,12 +31,40 @@ struct RenderSettings {
   bool pixel_center_only = false;  // one ray through each pixel centre instead of area samples
 };
 
+// A solid 3D checkerboard: cubes of side `size`, centred on the origin, alternate between the
+// material's albedo and this one. Centred cells keep a plane through a multiple of `size` inside
+// one layer of cubes, so rounding in the hit point cannot flip its colour.
+struct Checker {
+  Color albedo;
+  float size;
+};
+
+enum class MaterialType {
+  diffuse,     // Lambert + Blinn-Phong, shaded from the lights (stage 1 on)
+  mirror,      // perfect specular reflection (stage 2 on)
+  dielectric,  // glass: Fresnel-weighted reflection and refraction (stage 2 on)
+};
+
 struct Material {
   std::string name;
+  MaterialType type = MaterialType::diffuse;
   Color albedo{0.8f};      // diffuse reflectance rho in [0, 1] per channel
   Color specular{0.0f};    // Blinn-Phong specular reflectance in [0, 1]
   float shininess = 32.0f; // Blinn-Phong exponent
   Color emission{0.0f};    // emitted radiance Le, from the front face only
+  std::optional<Checker> checker;
+  Color reflectance{1.0f}; // mirror: fraction reflected per channel
+  float ior = 1.5f;        // dielectric: index of refraction inside (outside is 1, vacuum/air)
+
+  // The diffuse reflectance at a surface point: the albedo, or the checker's colour there.
+  Color albedo_at(Vec3 p) const {
+    if (!checker) return albedo;
+    const Vec3 cell = glm::floor(p / checker->size + 0.5f);
+    // Parity per axis through fmod, which (unlike a cast to an integer) is defined for any float.
+    auto odd_cell = [](float c) { return std::fmod(std::abs(c), 2.0f) >= 1.0f; };
+    const bool odd = odd_cell(cell.x) != (odd_cell(cell.y) != odd_cell(cell.z));
+    return odd ? checker->albedo : albedo;
+  }
 };
 
 struct Sphere {
@@ -56,7 +90,15 @@ struct Quad {
   std::array<Vec3, 4> vertices;
 };
 
-using Geometry = std::variant<Sphere, Plane, Torus, Triangle, Quad>;
+// A triangle mesh from an OBJ file, placed in the world by `transform`. The mesh is shared, not
+// copied, when the description is.
+struct Mesh {
+  std::string file;  // as resolved from the scene file, for messages
+  std::shared_ptr<const TriangleMesh> mesh;  // in the OBJ file's own coordinates
+  Transform transform;
+};
+
+using Geometry = std::variant<Sphere, Plane, Torus, Triangle, Quad, Mesh>;
 
 struct Shape {
   std::string name;  // optional, for messages
@@ -81,6 +123,8 @@ struct SceneDescription {
 
 // Throws InputError("FILE: /json/path: problem") for a missing or unreadable file, malformed JSON,
 // a missing field, a wrong type, an unknown key, an unknown material, or a bad or non-finite number.
+// Mesh files are read too, relative to the scene file's folder; their errors name the OBJ file and
+// line (common/obj_loader.h).
 SceneDescription load_scene(const std::filesystem::path& path);
 // The same from text already in memory; `source` names it in messages.
 SceneDescription parse_scene(const std::string& text, const std::string& source);

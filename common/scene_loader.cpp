@@ -1,6 +1,7 @@
 // Reading scene files. Every check names the file and the JSON path (RFC 6901 pointer) of what is
 // wrong, because a student's first scene will have a typo in it.
 #include "common/error.h"
+#include "common/obj_loader.h"
 #include "common/scene.h"
 
 #include <nlohmann/json.hpp>
@@ -153,14 +154,32 @@ CameraSpec parse_camera(const Node& n) {
 }
 
 Material parse_material(const Node& n, const std::string& name) {
-  n.expect_object({"type", "albedo", "specular", "shininess", "emission"});
+  n.expect_object();
   Material m;
   m.name = name;
-  if (n.has("type") && n["type"].as_string() != "diffuse")
-    n["type"].fail("unknown material type '" + n["type"].as_string() + "' (known: diffuse)");
-  if (n.has("albedo")) m.albedo = n["albedo"].as_color(1.0f, "albedo (more than 1 creates energy)");
-  if (n.has("specular")) m.specular = n["specular"].as_color(1.0f, "specular reflectance");
-  if (n.has("shininess")) m.shininess = n["shininess"].as_float(0.0f, 1e6f, "shininess");
+  const std::string type = n.has("type") ? n["type"].as_string() : "diffuse";
+  if (type == "diffuse") {
+    n.expect_object({"type", "albedo", "specular", "shininess", "emission", "checker"});
+    if (n.has("albedo")) m.albedo = n["albedo"].as_color(1.0f, "albedo (more than 1 creates energy)");
+    if (n.has("specular")) m.specular = n["specular"].as_color(1.0f, "specular reflectance");
+    if (n.has("shininess")) m.shininess = n["shininess"].as_float(0.0f, 1e6f, "shininess");
+    if (n.has("checker")) {
+      const Node c = n["checker"];
+      c.expect_object({"albedo", "size"});
+      m.checker = Checker{c["albedo"].as_color(1.0f, "albedo (more than 1 creates energy)"),
+                          c["size"].as_positive("checker size")};
+    }
+  } else if (type == "mirror") {
+    n.expect_object({"type", "reflectance", "emission"});
+    m.type = MaterialType::mirror;
+    if (n.has("reflectance")) m.reflectance = n["reflectance"].as_color(1.0f, "reflectance (more than 1 creates energy)");
+  } else if (type == "dielectric") {
+    n.expect_object({"type", "ior", "emission"});
+    m.type = MaterialType::dielectric;
+    if (n.has("ior")) m.ior = n["ior"].as_float(1.0f, 10.0f, "index of refraction");
+  } else {
+    n["type"].fail("unknown material type '" + type + "' (known: diffuse, mirror, dielectric)");
+  }
   if (n.has("emission")) m.emission = n["emission"].as_color(3.0e38f, "emission");
   return m;
 }
@@ -173,7 +192,45 @@ std::array<Vec3, N> parse_vertices(const Node& n) {
   return v;
 }
 
-Geometry parse_geometry(const Node& n, const std::string& type) {
+// "transform": {"scale": s or [sx, sy, sz], "rotate": [x, y, z] degrees, "translate": [x, y, z]},
+// each optional.
+Transform parse_transform(const Node& n) {
+  n.expect_object({"scale", "rotate", "translate"});
+  Vec3 scale(1.0f), rotate(0.0f), translate(0.0f);
+  if (n.has("scale")) {
+    const Node s = n["scale"];
+    scale = s.value().is_array() ? s.as_vec3() : Vec3(s.as_float());
+    if (!(scale.x != 0.0f && scale.y != 0.0f && scale.z != 0.0f))
+      s.fail("scale must not be zero on any axis (the mesh would be flat)");
+  }
+  if (n.has("rotate")) rotate = n["rotate"].as_vec3();
+  if (n.has("translate")) translate = n["translate"].as_vec3();
+  return Transform::from_scale_rotate_translate(scale, rotate, translate);
+}
+
+// Meshes named by several shapes are read once.
+class MeshCache {
+ public:
+  explicit MeshCache(std::filesystem::path folder) : folder_(std::move(folder)) {}
+  Mesh load(const Node& n) {
+    const std::filesystem::path file = (folder_ / n["file"].as_string()).lexically_normal();
+    auto& mesh = meshes_[file.string()];
+    if (!mesh) {
+      try {
+        mesh = std::make_shared<const TriangleMesh>(load_obj(file));
+      } catch (const InputError& e) {
+        n["file"].fail(e.what());  // "scene.json: /shapes/3/file: mesh.obj:12: problem"
+      }
+    }
+    return Mesh{file.string(), mesh, n.has("transform") ? parse_transform(n["transform"]) : Transform{}};
+  }
+
+ private:
+  std::filesystem::path folder_;
+  std::map<std::string, std::shared_ptr<const TriangleMesh>> meshes_;
+};
+
+Geometry parse_geometry(const Node& n, const std::string& type, MeshCache& meshes) {
   if (type == "sphere") {
     n.expect_object({"type", "name", "material", "center", "radius"});
     return Sphere{n["center"].as_vec3(), n["radius"].as_positive("radius")};
@@ -197,7 +254,11 @@ Geometry parse_geometry(const Node& n, const std::string& type) {
     n.expect_object({"type", "name", "material", "vertices"});
     return Quad{parse_vertices<4>(n["vertices"])};
   }
-  n["type"].fail("unknown shape type '" + type + "' (known: sphere, plane, torus, triangle, quad)");
+  if (type == "mesh") {
+    n.expect_object({"type", "name", "material", "file", "transform"});
+    return meshes.load(n);
+  }
+  n["type"].fail("unknown shape type '" + type + "' (known: sphere, plane, torus, triangle, quad, mesh)");
 }
 
 PointLight parse_light(const Node& n) {
@@ -239,13 +300,14 @@ SceneDescription parse_scene(const std::string& text, const std::string& source)
     scene.materials.push_back(parse_material(m, item.key()));
   }
 
+  MeshCache meshes(std::filesystem::path(source).parent_path());
   const Node shapes = root["shapes"];
   const size_t shape_count = shapes.expect_array();
   for (size_t i = 0; i < shape_count; ++i) {
     const Node s = shapes.at(i);
     s.expect_object();
     Shape shape;
-    shape.geometry = parse_geometry(s, s["type"].as_string());
+    shape.geometry = parse_geometry(s, s["type"].as_string(), meshes);
     if (s.has("name")) shape.name = s["name"].as_string();
     const std::string material = s["material"].as_string();
     const auto found = material_index.find(material);

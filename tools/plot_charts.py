@@ -49,9 +49,37 @@ def sphere_precision(charts):
     plt.close(fig)
 
 
+def offset_vs_scale(charts):
+    rows = read_rows(charts / "stage2-offset-vs-scale.csv")
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    fig, ax = plt.subplots(figsize=(8, 4.6))
+    styles = {"error bound": ("o-", "#2471a3", 2.2), "integer ulp": ("s--", "#17a589", 1.6)}
+    for method in methods:
+        mine = [r for r in rows if r["method"] == method]
+        scale = [float(r["scale"]) for r in mine]
+        # Percent of the compared pixels; a zero is drawn at the bottom of the log axis.
+        wrong = [100.0 * (int(r["acne"]) + int(r["leaks"])) / int(r["pixels"]) for r in mine]
+        style, colour, width = styles.get(method, ("^-", None, 1.2))
+        ax.plot(scale, [max(w, 0.004) for w in wrong], style, color=colour, lw=width, label=method)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_ylim(0.002, 100)
+    ax.axhline(0.004, color="grey", lw=0.6, ls=":")
+    ax.text(1.2e-3, 0.0026, "zero wrong pixels", color="grey", fontsize=8)
+    ax.set(xlabel="scene scale s (the whole scene multiplied by s)",
+           ylabel="pixels with the wrong shadow (% of 17,597)",
+           title="Stage 2: shadow-ray offsets across scene scales (acne + light leaks)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8, ncol=2)
+    fig.tight_layout()
+    fig.savefig(charts / "stage2-offset-vs-scale.png", dpi=110)
+    plt.close(fig)
+
+
 def main(root):
     charts = pathlib.Path(root) / "docs" / "charts"
     sphere_precision(charts)
+    offset_vs_scale(charts)
     print(f"charts written to {charts}")
 
 

@@ -6,9 +6,9 @@
 
 namespace rt {
 
-Color blinn_phong_brdf(const Material& material, Vec3 n, Vec3 wi, Vec3 wo) {
+Color blinn_phong_brdf(const Material& material, Color albedo, Vec3 n, Vec3 wi, Vec3 wo) {
   // BEGIN TASK stage1.shading.brdf
-  const Color diffuse = material.albedo * kInvPi;
+  const Color diffuse = albedo * kInvPi;
   if (material.specular == Color(0.0f)) return diffuse;
   const Vec3 half_vector = glm::normalize(wi + wo);
   const float cos_h = std::max(0.0f, glm::dot(n, half_vector));
@@ -17,7 +17,8 @@ Color blinn_phong_brdf(const Material& material, Vec3 n, Vec3 wi, Vec3 wo) {
   // PLACEHOLDER
   // report_unfinished_task("stage1.shading.brdf");
   // (void)n, (void)wi, (void)wo;
-  // return material.albedo * kInvPi;
+  // (void)material;
+  // return albedo * kInvPi;
   // END TASK
 }
 
@@ -25,6 +26,7 @@ Color shade_local(const RayCastingScene& scene, const Hit& hit, Vec3 to_viewer) 
   const Material& material = scene.materials()[size_t(hit.material)];
   Color radiance = hit.front_face ? material.emission : Color(0.0f);
   // BEGIN TASK stage1.shading.local
+  const Color albedo = material.albedo_at(hit.point);
   const Vec3 shadow_origin = hit.point + kShadowRayOffset * hit.normal;
   for (const PointLight& light : scene.lights()) {
     const Vec3 to_light = light.position - hit.point;
@@ -37,13 +39,13 @@ Color shade_local(const RayCastingScene& scene, const Hit& hit, Vec3 to_viewer) 
     const float shadow_length = glm::length(shadow_span);
     if (scene.occluded(Ray{shadow_origin, shadow_span / shadow_length}, Interval{0.0f, shadow_length}))
       continue;
-    radiance += blinn_phong_brdf(material, hit.normal, wi, to_viewer) * light.intensity *
+    radiance += blinn_phong_brdf(material, albedo, hit.normal, wi, to_viewer) * light.intensity *
                 (cos_theta / distance_squared);
   }
   // PLACEHOLDER
   // report_unfinished_task("stage1.shading.local");
   // (void)to_viewer;
-  // radiance += material.albedo * 0.5f;  // flat colour: shapes stay visible
+  // radiance += material.albedo_at(hit.point) * 0.5f;  // flat colour: shapes stay visible
   // END TASK
   return radiance;
 }

@@ -12,13 +12,15 @@ namespace rt {
 
 // Task stage1.shading.brdf. The BRDF of the diffuse material: Lambert plus a normalized
 // Blinn-Phong lobe,
-//   f_r = albedo / pi + specular * (s + 8) / (8 pi) * max(0, n.h)^s,   h = normalize(wi + wo).
+//   f_r = albedo / pi + specular * (s + 8) / (8 pi) * max(0, n.h)^s,   h = normalize(wi + wo),
+// with `albedo` the diffuse reflectance at the shaded point (material.albedo_at(point), which
+// differs from material.albedo on a checkered surface).
 // The 1/pi makes a white Lambertian surface reflect exactly what it receives; (s + 8) / (8 pi) is
 // the usual approximate normalization of the Blinn-Phong lobe (Akenine-Moeller et al.,
 // Real-Time Rendering, 4th ed., section 9.8), which keeps its highlight's energy roughly
 // constant as the exponent s changes. All directions are unit vectors pointing AWAY from the
 // surface; n is on the viewer's side.
-Color blinn_phong_brdf(const Material& material, Vec3 n, Vec3 wi, Vec3 wo);
+Color blinn_phong_brdf(const Material& material, Color albedo, Vec3 n, Vec3 wi, Vec3 wo);
 
 // Task stage1.shading.local. Radiance leaving hit.point towards `to_viewer`: the material's
 // emission (front face only) plus, for every point light above the surface (n.wi > 0) that a

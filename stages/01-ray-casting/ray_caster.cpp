@@ -16,17 +16,22 @@ DebugView debug_view_from_name(const std::string& name) {
 Color cast_ray(const RayCastingScene& scene, const Ray& ray, DebugView view) {
   const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
   if (!hit) return view == DebugView::none ? scene.background() : Color(0.0f);
+  const Material& material = scene.materials()[size_t(hit->material)];
+  return view == DebugView::none ? shade_local(scene, *hit, -ray.direction) : debug_color(*hit, material, view);
+}
+
+Color debug_color(const Hit& hit, const Material& material, DebugView view) {
   switch (view) {
-    case DebugView::none:
-      return shade_local(scene, *hit, -ray.direction);
     case DebugView::normal: {
-      const Vec3 outward = hit->front_face ? hit->normal : -hit->normal;
+      const Vec3 outward = hit.front_face ? hit.shading_normal : -hit.shading_normal;
       return 0.5f * (outward + 1.0f);
     }
     case DebugView::depth:
-      return Color(hit->t);
+      return Color(hit.t);
     case DebugView::albedo:
-      return scene.materials()[size_t(hit->material)].albedo;
+      return material.albedo_at(hit.point);
+    case DebugView::none:
+      break;
   }
   return Color(0.0f);
 }

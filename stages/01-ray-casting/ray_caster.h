@@ -20,4 +20,8 @@ DebugView debug_view_from_name(const std::string& name);
 
 Color cast_ray(const RayCastingScene& scene, const Ray& ray, DebugView view = DebugView::none);
 
+// The colour of a debug view (not DebugView::none) at a hit, for this stage and the later ones.
+// The normal view shows the outward shading normal.
+Color debug_color(const Hit& hit, const Material& material, DebugView view);
+
 }  // namespace rt

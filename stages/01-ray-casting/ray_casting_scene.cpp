@@ -22,9 +22,14 @@ RayCastingScene::RayCastingScene(const SceneDescription& description)
       tori_.push_back({TorusSurface(*torus), shape.material, index});
     else
       throw InputError(description.source + ": /shapes/" + std::to_string(i) +
-                       ": stage 1 renders spheres, planes and tori only (triangles and quads "
-                       "come with stage 2)");
+                       ": stage 1 renders spheres, planes and tori only (triangles, quads and "
+                       "meshes come with stage 2)");
   }
+  for (const Material& material : materials_)
+    if (material.type != MaterialType::diffuse)
+      throw InputError(description.source + ": /materials/" + material.name +
+                       ": stage 1 shades diffuse materials only (mirror and dielectric come with "
+                       "stage 2)");
 }
 
 std::optional<Hit> RayCastingScene::closest_hit(const Ray& ray, Interval range) const {

@@ -14,8 +14,8 @@ namespace rt {
 
 class RayCastingScene {
  public:
-  // Throws InputError naming the scene file and the shape when the scene holds a shape stage 1
-  // cannot render (triangles and quads arrive in stage 2).
+  // Throws InputError naming the scene file and the shape or material when the scene holds
+  // something stage 1 cannot render (triangles, quads, meshes, mirrors and glass arrive in stage 2).
   explicit RayCastingScene(const SceneDescription& description);
 
   // Task stage1.scene.closest_hit: the nearest hit with t strictly inside `range`, or nothing.

@@ -201,6 +201,15 @@ INSTANTIATE_TEST_SUITE_P(
                     "/render/spp: expected an integer, got number"},
         BrokenScene{"unknown light", "{" + kCamera + ", " + kMaterials + R"(, "shapes": [], "lights": [{"type": "spot", "position": [0,0,0], "intensity": [1,1,1]}]})",
                     "/lights/0/type: unknown light type 'spot'"},
+        BrokenScene{"albedo on a mirror", "{" + kCamera + R"(, "materials": {"m": {"type": "mirror", "albedo": [1,1,1]}}, "shapes": []})",
+                    "/materials/m: unknown key 'albedo'"},
+        BrokenScene{"index of refraction below one", "{" + kCamera + R"(, "materials": {"m": {"type": "dielectric", "ior": 0.5}}, "shapes": []})",
+                    "/materials/m/ior: index of refraction must be in [1, 10], got 0.5"},
+        BrokenScene{"mirror reflecting more than it gets", "{" + kCamera + R"(, "materials": {"m": {"type": "mirror", "reflectance": [1,1,1.2]}}, "shapes": []})",
+                    "/materials/m/reflectance/2: reflectance (more than 1 creates energy) must be in [0, 1], got 1.2"},
+        BrokenScene{"checker of size zero", "{" + kCamera + R"(, "materials": {"m": {"checker": {"albedo": [1,1,1], "size": 0}}}, "shapes": []})",
+                    "/materials/m/checker/size: checker size must be positive, got 0"},
+        BrokenScene{"mesh without a file", scene_with_shape(R"({"type": "mesh", "material": "m"})"), "/shapes/0: missing field 'file'"},
         BrokenScene{"negative intensity", "{" + kCamera + ", " + kMaterials + R"(, "shapes": [], "lights": [{"type": "point", "position": [0,0,0], "intensity": [1,-1,1]}]})",
                     "/lights/0/intensity/1: intensity must be in [0"}),
     [](const auto& info) {
@@ -209,6 +218,50 @@ INSTANTIATE_TEST_SUITE_P(
         if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
       return name;
     });
+
+TEST(SceneLoader, MaterialTypesAndTheirDefaults) {
+  const SceneDescription scene = parse_scene(
+      "{" + kCamera + R"(, "materials": {
+          "plain": {},
+          "tiles": {"albedo": [1, 0, 0], "checker": {"albedo": [0, 0, 1], "size": 0.5}},
+          "silver": {"type": "mirror"},
+          "tinted": {"type": "mirror", "reflectance": [0.9, 0.8, 0.7]},
+          "glass": {"type": "dielectric"},
+          "diamond": {"type": "dielectric", "ior": 2.42}}, "shapes": []})",
+      "materials.json");
+  auto material = [&](const std::string& name) {
+    for (const Material& m : scene.materials)
+      if (m.name == name) return m;
+    throw std::runtime_error("no material " + name);
+  };
+  EXPECT_EQ(material("plain").type, MaterialType::diffuse);
+  EXPECT_FALSE(material("plain").checker);
+  ASSERT_TRUE(material("tiles").checker);
+  EXPECT_EQ(material("tiles").checker->size, 0.5f);
+  EXPECT_EQ(material("tiles").albedo_at(Vec3(0.6f, 0, 0)), Color(0, 0, 1));
+  EXPECT_EQ(material("silver").type, MaterialType::mirror);
+  EXPECT_EQ(material("silver").reflectance, Color(1.0f));
+  EXPECT_EQ(material("tinted").reflectance, Color(0.9f, 0.8f, 0.7f));
+  EXPECT_EQ(material("glass").type, MaterialType::dielectric);
+  EXPECT_EQ(material("glass").ior, 1.5f);
+  EXPECT_EQ(material("diamond").ior, 2.42f);
+}
+
+TEST(SceneLoader, PointLightCornellBoxHasTheCanonicalGeometry) {
+  // Stage 2's Cornell box adds only a point light at the centre of the emitter, with the
+  // emitter's on-axis intensity I = Le * A (A = 130 mm x 105 mm).
+  const SceneDescription canonical = load_scene(testing::source_path("assets/scenes/cornell-box.json"));
+  const SceneDescription lit = load_scene(testing::source_path("assets/scenes/cornell-box-point-light.json"));
+  ASSERT_EQ(lit.shapes.size(), canonical.shapes.size());
+  for (size_t i = 0; i < lit.shapes.size(); ++i) {
+    EXPECT_EQ(lit.shapes[i].name, canonical.shapes[i].name);
+    EXPECT_EQ(std::get<Quad>(lit.shapes[i].geometry).vertices, std::get<Quad>(canonical.shapes[i].geometry).vertices);
+  }
+  ASSERT_EQ(lit.lights.size(), 1u);
+  EXPECT_EQ(lit.lights[0].position, Vec3(278, 548.7f, 279.5f));
+  EXPECT_NEAR(lit.lights[0].intensity.r, 47.8348f * 130 * 105, 0.1f);
+  EXPECT_NEAR(lit.lights[0].intensity.b, 31.0808f * 130 * 105, 0.1f);
+}
 
 TEST(SceneLoader, MissingFileIsNamed) {
   try {

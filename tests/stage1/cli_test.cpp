@@ -8,6 +8,7 @@
 namespace rt {
 namespace {
 
+using testing::expect_one_line_error;
 using testing::run_command;
 using testing::ScratchDir;
 using testing::source_path;
@@ -16,12 +17,6 @@ const std::string kStage1 = STAGE1_EXE;
 const std::string kSpheres = source_path("assets/scenes/spheres.json").string();
 
 std::string stage1(const std::string& arguments) { return "'" + kStage1 + "' " + arguments; }
-
-void expect_one_line_error(const testing::CommandResult& r, int code, const std::string& fragment) {
-  EXPECT_EQ(r.exit_code, code) << r.err;
-  EXPECT_NE(r.err.find(fragment), std::string::npos) << "stderr: " << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line, got: " << r.err;
-}
 
 TEST(Stage1Cli, HelpListsTheCommonFlags) {
   ScratchDir dir;
@@ -81,6 +76,11 @@ TEST(Stage1Cli, BadInputExitsWithOneAndWritesNothing) {
   // The Cornell box is made of quads, which stage 1 does not render.
   expect_one_line_error(run_command(stage1("--scene " + source_path("assets/scenes/cornell-box.json").string() + out), dir), 1,
                         "cornell-box.json: /shapes/0: stage 1 renders spheres, planes and tori only");
+  // Mirrors and glass are stage 2's.
+  testing::write_text(dir / "mirror.json", R"({"camera": {"position": [0,0,-5], "look_at": [0,0,0], "vfov": 40},
+    "materials": {"silver": {"type": "mirror"}}, "shapes": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "silver"}]})");
+  expect_one_line_error(run_command(stage1("--scene " + (dir / "mirror.json").string() + out), dir), 1,
+                        "mirror.json: /materials/silver: stage 1 shades diffuse materials only");
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -62,6 +63,14 @@ inline CommandResult run_command(const std::string& command, const ScratchDir& s
   const int status =
       std::system((command + " >'" + out.string() + "' 2>'" + err.string() + "'").c_str());
   return CommandResult{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
+}
+
+// A failed run as the command line promises it: exit `code`, and one line on stderr containing
+// `fragment`.
+inline void expect_one_line_error(const CommandResult& r, int code, const std::string& fragment) {
+  EXPECT_EQ(r.exit_code, code) << r.err;
+  EXPECT_NE(r.err.find(fragment), std::string::npos) << "stderr: " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line, got: " << r.err;
 }
 
 }  // namespace rt::testing

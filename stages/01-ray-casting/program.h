@@ -1,0 +1,37 @@
+// Stage 1: the end of every stage program, shared by the later stages' programs: render with a
+// progress bar (on a terminal), scale a depth view for PNG, write the image atomically, and print
+// one line of figures.
+#pragma once
+
+#include "01-ray-casting/ray_caster.h"
+#include "01-ray-casting/render.h"
+#include "common/cli.h"
+#include "common/image_io.h"
+#include "common/progress.h"
+
+#include <chrono>
+#include <cstdio>
+
+namespace rt {
+
+// A depth image in scene units is mostly white in a PNG; scale it by the farthest hit.
+void scale_depth_for_png(Image& image);
+
+template <class RadianceFn>
+void render_and_write(const char* program, const CommonOptions& options, const RenderSettings& settings,
+                      const PinholeCamera& camera, DebugView view, RadianceFn&& radiance) {
+  const auto start = std::chrono::steady_clock::now();
+  ProgressBar progress(std::uint64_t(settings.width) * std::uint64_t(settings.height) *
+                           std::uint64_t(settings.spp),
+                       "samples");
+  Image image = render_image(camera, settings, options.threads, radiance, &progress);
+  progress.finish();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (view == DebugView::depth && image_format_for(options.out) == ImageFormat::png) scale_depth_for_png(image);
+  write_image(options.out, image);
+  std::printf("%s: wrote %s (%dx%d, %d spp) in %.2f s, %ssamples/s\n", program, options.out.c_str(),
+              settings.width, settings.height, settings.spp, seconds,
+              format_si(double(image.pixel_count()) * settings.spp / seconds).c_str());
+}
+
+}  // namespace rt

@@ -1,0 +1,51 @@
+// stage2: renders a scene by Whitted-style recursive ray tracing (or one of its debug views).
+#include "01-ray-casting/program.h"
+#include "02-whitted/whitted.h"
+
+#include <map>
+
+int main(int argc, char** argv) {
+  using namespace rt;
+  CommonOptions options;
+  std::string debug_name = "none";
+  WhittedOptions whitted;
+  TriangleMethod triangle_method = TriangleMethod::watertight;
+
+  return run_stage_program(
+      argc, argv, "stage2", "Stage 2: Whitted-style ray tracing: mirrors, glass, shadows, meshes", options,
+      [&](CLI::App& app) {
+        add_max_depth_flag(app, options);
+        app.add_option("--debug", debug_name,
+                       "Debug view instead of shading: none, normal (shading normal), depth, albedo")
+            ->check(CLI::IsMember({"none", "normal", "depth", "albedo"}));
+        app.add_option("--fresnel", whitted.fresnel, "Fresnel reflectance of glass: exact or schlick")
+            ->transform(CLI::CheckedTransformer(
+                std::map<std::string, FresnelModel>{{"exact", FresnelModel::exact},
+                                                    {"schlick", FresnelModel::schlick}}));
+        app.add_option("--offset", whitted.offset.method,
+                       "Where secondary rays start: error-bound (default), integer-ulp, or fixed "
+                       "(--epsilon along the normal)")
+            ->transform(CLI::CheckedTransformer(std::map<std::string, OffsetMethod>{
+                {"error-bound", OffsetMethod::error_bound},
+                {"integer-ulp", OffsetMethod::integer_ulp},
+                {"fixed", OffsetMethod::fixed}}));
+        app.add_option("--epsilon", whitted.offset.epsilon, "Offset distance for --offset fixed")
+            ->check(CLI::Range(0.0f, 3.0e38f));
+        app.add_option("--triangle", triangle_method,
+                       "Ray-triangle test: watertight (default) or moller-trumbore")
+            ->transform(CLI::CheckedTransformer(std::map<std::string, TriangleMethod>{
+                {"watertight", TriangleMethod::watertight},
+                {"moller-trumbore", TriangleMethod::moller_trumbore}}));
+      },
+      [&] {
+        const DebugView view = debug_view_from_name(debug_name);
+        const SceneDescription description = load_scene(options.scene);
+        const RenderSettings settings = options.settings_for(description);
+        whitted.max_depth = settings.max_depth;
+        const WhittedScene scene(description, triangle_method);
+        const PinholeCamera camera(description.camera, settings.width, settings.height);
+        render_and_write("stage2", options, settings, camera, view, [&](const Ray& ray, Rng&) {
+          return view == DebugView::none ? whitted_radiance(scene, ray, whitted) : whitted_debug(scene, ray, view);
+        });
+      });
+}

@@ -1,0 +1,165 @@
+#include "02-whitted/triangle_intersection.h"
+#include "02-whitted/triangle_leaks.h"
+#include "common/random.h"
+
+#include <gtest/gtest.h>
+
+namespace rt {
+namespace {
+
+struct TriangleTest {
+  const char* name;
+  TriangleMethod method;
+};
+void PrintTo(const TriangleTest& t, std::ostream* out) { *out << t.name; }
+
+// Both tests must pass every exact case; only the crack test below tells them apart.
+class BothTriangleTests : public ::testing::TestWithParam<TriangleTest> {
+ protected:
+  std::optional<TriangleHit> hit(const Ray& ray, Vec3 v0, Vec3 v1, Vec3 v2,
+                                 Interval range = Interval::positive()) const {
+    return intersect_triangle(GetParam().method, ray, v0, v1, v2, range);
+  }
+  std::optional<TriangleHit> hit(const Ray& ray, Interval range = Interval::positive()) const {
+    return hit(ray, kV0, kV1, kV2, range);
+  }
+  // The triangle (0,0,2) (1,0,2) (0,1,2), facing -z (towards the origin).
+  const Vec3 kV0{0, 0, 2}, kV1{1, 0, 2}, kV2{0, 1, 2};
+};
+
+// A ray along +z through the point (x, y) of the triangle's plane.
+Ray through(float x, float y) { return Ray{Vec3(x, y, 0), Vec3(0, 0, 1)}; }
+
+TEST_P(BothTriangleTests, HitInsideGivesDistanceAndBarycentrics) {
+  const auto h = hit(through(0.25f, 0.5f));
+  ASSERT_TRUE(h);
+  EXPECT_FLOAT_EQ(h->t, 2.0f);
+  EXPECT_FLOAT_EQ(h->b1, 0.25f);  // weight of v1 = (1, 0): the x coordinate
+  EXPECT_FLOAT_EQ(h->b2, 0.5f);   // weight of v2 = (0, 1): the y coordinate
+}
+
+TEST_P(BothTriangleTests, SlantedRayHitsWhereTheLineMeetsThePlane) {
+  const Vec3 target(0.2f, 0.3f, 2.0f), origin(-1.0f, 2.0f, -1.0f);
+  const auto h = hit(Ray{origin, glm::normalize(target - origin)});
+  ASSERT_TRUE(h);
+  EXPECT_NEAR(h->t, glm::length(target - origin), 1e-5f);
+  EXPECT_NEAR(h->b1, 0.2f, 1e-6f);
+  EXPECT_NEAR(h->b2, 0.3f, 1e-6f);
+}
+
+TEST_P(BothTriangleTests, EdgesAndVerticesCountAsInside) {
+  // Exactly representable points on each edge and at each vertex, ray along the axis.
+  for (const Vec2 p : {Vec2(0.5f, 0.0f), Vec2(0.0f, 0.5f), Vec2(0.5f, 0.5f), Vec2(0.25f, 0.75f),
+                       Vec2(0.0f, 0.0f), Vec2(1.0f, 0.0f), Vec2(0.0f, 1.0f)}) {
+    EXPECT_TRUE(hit(through(p.x, p.y))) << "point (" << p.x << ", " << p.y << ")";
+  }
+}
+
+TEST_P(BothTriangleTests, PointsOutsideAreMissed) {
+  for (const Vec2 p : {Vec2(-0.01f, 0.5f), Vec2(0.5f, -0.01f), Vec2(0.51f, 0.5f), Vec2(1.0f, 1.0f),
+                       Vec2(2.0f, -1.0f), Vec2(-5.0f, -5.0f)}) {
+    EXPECT_FALSE(hit(through(p.x, p.y))) << "point (" << p.x << ", " << p.y << ")";
+  }
+}
+
+TEST_P(BothTriangleTests, RaysParallelToThePlaneNeverHit) {
+  // Off the plane, and lying exactly in it (0/0 territory for the textbook formulas).
+  EXPECT_FALSE(hit(Ray{Vec3(-1, 0.25f, 1), Vec3(1, 0, 0)}));
+  EXPECT_FALSE(hit(Ray{Vec3(-1, 0.25f, 2), Vec3(1, 0, 0)}));
+  EXPECT_FALSE(hit(Ray{Vec3(0.2f, -1, 2), Vec3(0, 1, 0)}));
+}
+
+TEST_P(BothTriangleTests, BackFacesAreHitToo) {
+  const auto front = hit(Ray{Vec3(0.25f, 0.25f, 0), Vec3(0, 0, 1)});
+  const auto back = hit(Ray{Vec3(0.25f, 0.25f, 4), Vec3(0, 0, -1)});
+  ASSERT_TRUE(front);
+  ASSERT_TRUE(back);
+  EXPECT_FLOAT_EQ(back->t, 2.0f);
+  EXPECT_FLOAT_EQ(back->b1, front->b1);
+  EXPECT_FLOAT_EQ(back->b2, front->b2);
+}
+
+TEST_P(BothTriangleTests, OnlyHitsInsideTheOpenRange) {
+  EXPECT_FALSE(hit(Ray{Vec3(0.25f, 0.25f, 3), Vec3(0, 0, 1)})) << "triangle behind the origin";
+  EXPECT_FALSE(hit(through(0.25f, 0.25f), Interval{0.0f, 1.5f})) << "beyond t_max";
+  EXPECT_FALSE(hit(through(0.25f, 0.25f), Interval{0.0f, 2.0f})) << "t = t_max is outside";
+  EXPECT_TRUE(hit(through(0.25f, 0.25f), Interval{1.0f, 2.5f}));
+}
+
+TEST_P(BothTriangleTests, TinyAndHugeTrianglesAreHit) {
+  // No absolute epsilon: det scales with the area, so a fixed threshold would drop small triangles.
+  for (const float s : {1e-6f, 1e-3f, 1e3f, 1e6f}) {
+    const auto h = hit(Ray{Vec3(0.25f * s, 0.25f * s, -s), Vec3(0, 0, 1)}, s * kV0, s * kV1, s * kV2);
+    ASSERT_TRUE(h) << "scale " << s;
+    EXPECT_NEAR(h->t, 3.0f * s, 1e-6f * s);
+  }
+}
+
+TEST_P(BothTriangleTests, DegenerateTrianglesNeverHitAndNeverGiveNan) {
+  const std::vector<std::array<Vec3, 3>> degenerate = {
+      {Vec3(0, 0, 2), Vec3(0, 0, 2), Vec3(0, 1, 2)},           // two equal vertices
+      {Vec3(0, 0, 2), Vec3(1, 1, 2), Vec3(2, 2, 2)},           // collinear
+      {Vec3(0.3f, 0.3f, 2), Vec3(0.3f, 0.3f, 2), Vec3(0.3f, 0.3f, 2)},  // a point
+      {Vec3(0, 0, 2), Vec3(1, 0, 2), Vec3(0.5f, 1e-30f, 2)},  // area 5e-31, all but flat
+  };
+  Rng rng(11, 0, 0);
+  for (const auto& v : degenerate)
+    for (int i = 0; i < 10000; ++i) {
+      // Rays from around the origin aimed at the triangle's neighbourhood, including its line.
+      const Vec3 target(rng.uniform() * 2.0f - 0.5f, i % 2 ? rng.uniform() * 2.0f - 0.5f : 0.0f, 2.0f);
+      const Vec3 origin(rng.uniform() - 0.5f, rng.uniform() - 0.5f, 0.0f);
+      const auto h = hit(Ray{origin, glm::normalize(target - origin)}, v[0], v[1], v[2]);
+      if (h) {
+        // Only the nearly flat triangle has an area; it may be hit, but with finite numbers.
+        ASSERT_EQ(v[2].y, 1e-30f) << "a zero-area triangle was hit";
+        ASSERT_TRUE(std::isfinite(h->t) && std::isfinite(h->b1) && std::isfinite(h->b2));
+      }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Triangle, BothTriangleTests,
+                         ::testing::Values(TriangleTest{"moller_trumbore", TriangleMethod::moller_trumbore},
+                                           TriangleTest{"watertight", TriangleMethod::watertight}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+// The crack test (stages/02-whitted/triangle_leaks.h): rays from inside a closed, jittered mesh
+// aimed exactly at its shared edges and vertices, at four scales. 3,168 edge rays and 266 vertex
+// rays per scale.
+class Watertight : public ::testing::TestWithParam<float> {};
+
+TEST_P(Watertight, NoRayPassesThroughTheWatertightTest) {
+  const LeakSetup setup = make_leak_setup(GetParam(), 4, 2024);
+  EXPECT_EQ(count_leaks(setup.mesh, setup.edge_rays, TriangleMethod::watertight), 0);
+  EXPECT_EQ(count_leaks(setup.mesh, setup.vertex_rays, TriangleMethod::watertight), 0);
+}
+
+// Moeller-Trumbore leaks; the test pins the count measured when this was written (docs/stage2.md
+// has the table) so that a change which makes it leak more is noticed: about 8% of the edge rays
+// and 7% of the vertex rays (4 rays per edge, seed 2024).
+struct MeasuredLeaks {
+  float scale;
+  int edge, vertex;
+};
+constexpr MeasuredLeaks kMollerTrumboreLeaks[] = {{1e-3f, 260, 24}, {1.0f, 250, 18}, {1e3f, 259, 21}, {1e5f, 265, 19}};
+
+TEST_P(Watertight, MollerTrumboreLeaksNoMoreThanMeasured) {
+  const LeakSetup setup = make_leak_setup(GetParam(), 4, 2024);
+  const int edge = count_leaks(setup.mesh, setup.edge_rays, TriangleMethod::moller_trumbore);
+  const int vertex = count_leaks(setup.mesh, setup.vertex_rays, TriangleMethod::moller_trumbore);
+  for (const MeasuredLeaks& m : kMollerTrumboreLeaks)
+    if (m.scale == GetParam()) {
+      EXPECT_LE(edge, m.edge);
+      EXPECT_LE(vertex, m.vertex);
+    }
+  std::printf("Moller-Trumbore at scale %g: %d of %zu edge rays and %d of %zu vertex rays leaked\n",
+              double(GetParam()), edge, setup.edge_rays.size(), vertex, setup.vertex_rays.size());
+}
+
+INSTANTIATE_TEST_SUITE_P(Scales, Watertight, ::testing::Values(1e-3f, 1.0f, 1e3f, 1e5f),
+                         [](const auto& info) {
+                           const int exponent = int(std::lround(std::log10(info.param)));
+                           return "scale_1e" + std::string(exponent < 0 ? "m" : "") + std::to_string(std::abs(exponent));
+                         });
+
+}  // namespace
+}  // namespace rt
