@@ -32,15 +32,22 @@ Color shade_direct(const WhittedScene& scene, const Hit& hit, Vec3 wo, const Off
 
 namespace {
 
+// Whether a branch of this weight is worth following (WhittedOptions::min_weight).
+[[maybe_unused]] bool worth_following(float weight, const WhittedOptions& options) {
+  return weight >= options.min_weight && weight > 0.0f;
+}
+
 Color trace_mirror(const WhittedScene& scene, const Ray& ray, const Hit& hit, const Material& material,
-                   const WhittedOptions& options, int depth) {
+                   const WhittedOptions& options, int depth, float weight) {
   // BEGIN TASK stage2.whitted.mirror
+  const float reflected_weight = weight * max_component(material.reflectance);
+  if (!worth_following(reflected_weight, options)) return Color(0.0f);
   const Vec3 reflected = reflect(ray.direction, hit.shading_normal);
-  return material.reflectance *
-         whitted_radiance(scene, spawn_ray(hit, reflected, options.offset), options, depth + 1);
+  return material.reflectance * whitted_radiance(scene, spawn_ray(hit, reflected, options.offset), options,
+                                                 depth + 1, reflected_weight);
   // PLACEHOLDER
   // report_unfinished_task("stage2.whitted.mirror");
-  // (void)scene, (void)ray, (void)hit, (void)options, (void)depth;
+  // (void)scene, (void)ray, (void)hit, (void)options, (void)depth, (void)weight;
   // return material.reflectance * 0.5f;
   // END TASK
 }
@@ -49,7 +56,7 @@ Color trace_mirror(const WhittedScene& scene, const Ray& ray, const Hit& hit, co
 // enters and then leaves the glass picks up both factors, which cancel, so they are left out
 // (Veach's thesis, section 5.2, has the general rule for non-symmetric transport).
 Color trace_dielectric(const WhittedScene& scene, const Ray& ray, const Hit& hit, const Material& material,
-                       const WhittedOptions& options, int depth) {
+                       const WhittedOptions& options, int depth, float weight) {
   // BEGIN TASK stage2.whitted.dielectric
   // hit.normal faces the incoming ray, so front_face says which side the ray comes from; the
   // material's index is inside, 1 outside (no nested media).
@@ -59,24 +66,28 @@ Color trace_dielectric(const WhittedScene& scene, const Ray& ray, const Hit& hit
   const Vec3 n = hit.shading_normal;
   const float cos_i = -glm::dot(ray.direction, n);
   const float reflectance = fresnel(options.fresnel, cos_i, eta_i, eta_t);
-  const Vec3 reflected = reflect(ray.direction, n);
-  Color radiance =
-      reflectance * whitted_radiance(scene, spawn_ray(hit, reflected, options.offset), options, depth + 1);
-  if (reflectance < 1.0f)
+  Color radiance(0.0f);
+  if (worth_following(weight * reflectance, options)) {
+    const Vec3 reflected = reflect(ray.direction, n);
+    radiance += reflectance * whitted_radiance(scene, spawn_ray(hit, reflected, options.offset), options,
+                                               depth + 1, weight * reflectance);
+  }
+  if (worth_following(weight * (1.0f - reflectance), options))
     if (const std::optional<Vec3> refracted = refract(ray.direction, n, eta_i, eta_t))
-      radiance += (1.0f - reflectance) *
-                  whitted_radiance(scene, spawn_ray(hit, *refracted, options.offset), options, depth + 1);
+      radiance += (1.0f - reflectance) * whitted_radiance(scene, spawn_ray(hit, *refracted, options.offset),
+                                                          options, depth + 1, weight * (1.0f - reflectance));
   return radiance;
   // PLACEHOLDER
   // report_unfinished_task("stage2.whitted.dielectric");
-  // (void)scene, (void)ray, (void)hit, (void)material, (void)options, (void)depth;
+  // (void)scene, (void)ray, (void)hit, (void)material, (void)options, (void)depth, (void)weight;
   // return Color(0.5f);
   // END TASK
 }
 
 }  // namespace
 
-Color whitted_radiance(const WhittedScene& scene, const Ray& ray, const WhittedOptions& options, int depth) {
+Color whitted_radiance(const WhittedScene& scene, const Ray& ray, const WhittedOptions& options, int depth,
+                       float weight) {
   const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
   if (!hit) return scene.background();
   const Material& material = scene.materials()[size_t(hit->material)];
@@ -86,10 +97,10 @@ Color whitted_radiance(const WhittedScene& scene, const Ray& ray, const WhittedO
       return emitted + shade_direct(scene, *hit, -ray.direction, options.offset);
     case MaterialType::mirror:
       if (depth >= options.max_depth) return emitted;
-      return emitted + trace_mirror(scene, ray, *hit, material, options, depth);
+      return emitted + trace_mirror(scene, ray, *hit, material, options, depth, weight);
     case MaterialType::dielectric:
       if (depth >= options.max_depth) return emitted;
-      return emitted + trace_dielectric(scene, ray, *hit, material, options, depth);
+      return emitted + trace_dielectric(scene, ray, *hit, material, options, depth, weight);
   }
   return emitted;
 }

@@ -20,6 +20,12 @@ struct WhittedOptions {
   int max_depth = 5;
   FresnelModel fresnel = FresnelModel::exact;
   OffsetPolicy offset;
+  // Adaptive tree-depth control (Hall & Greenberg, "A Testbed for Realistic Image Synthesis",
+  // IEEE CG&A 3(8), 1983): a branch whose weight (the product of the reflectances and Fresnel
+  // factors along it) falls below this is not followed. Glass splits every ray in two, so without
+  // it a ray between glass and mirrors costs 2^max_depth rays; with it, the weights at each depth
+  // add up to at most 1, so each depth holds at most 1 / min_weight branches. 0 turns it off.
+  float min_weight = 1e-4f;
 };
 
 // Task stage2.whitted.direct. Light from the point lights reflected towards `wo` at a diffuse
@@ -27,10 +33,11 @@ struct WhittedOptions {
 // f_r I cos(theta) / r^2 with stage 1's Blinn-Phong BRDF, using the shading normal.
 Color shade_direct(const WhittedScene& scene, const Hit& hit, Vec3 wo, const OffsetPolicy& offset);
 
-// The radiance arriving along `ray`, after `depth` specular bounces so far.
+// The radiance arriving along `ray`, after `depth` specular bounces so far, on a branch of the
+// ray tree with the given `weight`.
 // Task stage2.whitted.mirror and task stage2.whitted.dielectric are its two recursive cases.
 Color whitted_radiance(const WhittedScene& scene, const Ray& ray, const WhittedOptions& options,
-                       int depth = 0);
+                       int depth = 0, float weight = 1.0f);
 
 // The debug views of stage 1 (normal, depth, albedo) for a stage-2 scene. The normal view shows
 // the outward SHADING normal, so interpolated mesh normals can be checked by eye.

@@ -33,10 +33,11 @@ SceneDescription scene_of(std::vector<Material> materials, std::vector<Shape> sh
   return d;
 }
 
-WhittedOptions depth(int max_depth, FresnelModel fresnel = FresnelModel::exact) {
+WhittedOptions depth(int max_depth, FresnelModel fresnel = FresnelModel::exact, float min_weight = 1e-4f) {
   WhittedOptions o;
   o.max_depth = max_depth;
   o.fresnel = fresnel;
+  o.min_weight = min_weight;
   return o;
 }
 
@@ -70,14 +71,15 @@ TEST(Whitted, TwoFacingMirrorsStopAtTheDepthLimit) {
 
 // A glass ball in a uniform environment neither absorbs nor emits, so with R + T = 1 at every
 // interface it returns exactly the environment's radiance (a furnace test for the recursion).
-// Rays stay within |x| < 0.85 of the axis, where the light lost to the depth limit is below 1e-5.
+// Rays stay within |x| < 0.85 of the axis, where the light lost to the depth limit is below 1e-5;
+// branch pruning is off (min_weight 0), so nothing else is lost.
 TEST(Whitted, GlassBallInAUniformEnvironmentDisappears) {
   const Color environment(0.7f, 0.5f, 0.3f);
   const WhittedScene scene(scene_of({glass(1.5f)}, {Shape{"ball", Sphere{Vec3(0), 1.0f}, 0}}, environment));
   for (const FresnelModel model : {FresnelModel::exact, FresnelModel::schlick})
     for (int i = -17; i <= 17; ++i) {
       const Ray ray{Vec3(0.05f * float(i), 0.01f * float(i), -5), Vec3(0, 0, 1)};
-      const Color seen = whitted_radiance(scene, ray, depth(16, model));
+      const Color seen = whitted_radiance(scene, ray, depth(16, model, 0.0f));
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(seen[c], environment[c], 1e-5f) << "ray " << i;
     }
 }
@@ -98,6 +100,26 @@ TEST(Whitted, GlassSlabPassesWhatFresnelLetsThrough) {
   const Color seen = whitted_radiance(scene, Ray{Vec3(0.2f, 0.1f, -1), Vec3(0, 0, 1)}, depth(30));
   const float r = 0.04f;
   EXPECT_NEAR(seen.r, (1 - r) * (1 - r) / (1 - r * r), 1e-5f);
+}
+
+TEST(Whitted, BranchPruningBoundsTheRayTreeBetweenGlassAndMirrors) {
+  // A glass slab between two perfect mirrors: every ray splits at each glass face and nothing
+  // is absorbed, so without pruning the tree would hold 2^200 rays. With it, at most 1 / min_weight
+  // branches per depth are followed; what is cut off is dark (no light reaches inside), so the
+  // answer is 0 either way, and it must come back at all.
+  Material black;
+  black.albedo = Color(0.0f);
+  auto square = [](float z, bool facing_minus_z) {
+    return facing_minus_z ? Quad{{Vec3(-9, -9, z), Vec3(-9, 9, z), Vec3(9, 9, z), Vec3(9, -9, z)}}
+                          : Quad{{Vec3(-9, -9, z), Vec3(9, -9, z), Vec3(9, 9, z), Vec3(-9, 9, z)}};
+  };
+  const WhittedScene scene(scene_of({mirror(Color(1.0f)), glass(1.5f)},
+                                    {Shape{"mirror", square(0, false), 0}, Shape{"mirror", square(2, true), 0},
+                                     Shape{"glass", square(0.9f, true), 1}, Shape{"glass", square(1.1f, false), 1}},
+                                    Color(1.0f)));
+  const Color seen = whitted_radiance(scene, Ray{Vec3(0.1f, 0.2f, 0.5f), glm::normalize(Vec3(0.01f, 0.02f, 1))}, depth(200));
+  EXPECT_TRUE(is_finite(seen));
+  EXPECT_LT(seen.r, 1e-3f);
 }
 
 TEST(Whitted, TotalInternalReflectionTrapsLightInsideGlass) {
