@@ -76,10 +76,57 @@ def offset_vs_scale(charts):
     plt.close(fig)
 
 
+ACCEL_STYLE = {"naive": ("o-", "#7f8c8d"), "median": ("s-", "#c0392b"), "middle": ("^-", "#d68910"),
+               "sah": ("D-", "#2471a3"), "embree": ("x--", "#17a589")}
+
+
+def accel_time_per_ray(charts):
+    rows = [r for r in read_rows(charts / "stage3-accel.csv") if r["mesh"] != "bunny"]
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.4), sharey=True)
+    for ax, kind in zip(axes, ("incoherent", "coherent")):
+        for accel, (style, colour) in ACCEL_STYLE.items():
+            mine = [r for r in rows if r["accel"] == accel]
+            if not mine:
+                continue
+            ax.loglog([int(r["triangles"]) for r in mine], [float(r[f"{kind}_ns_per_ray"]) for r in mine], style,
+                      color=colour, label=accel)
+        ax.set(xlabel="triangles (jittered UV sphere)", title=f"{kind} rays, one thread")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].set_ylabel("time per ray (ns)")
+    axes[0].legend(fontsize=8)
+    fig.suptitle("Stage 3: naive is linear in the triangle count, a BVH about logarithmic")
+    fig.tight_layout()
+    fig.savefig(charts / "stage3-time-per-ray.png", dpi=110)
+    plt.close(fig)
+
+
+def accel_build_vs_trace(charts):
+    rows = [r for r in read_rows(charts / "stage3-accel.csv") if r["accel"] not in ("naive",)]
+    fig, ax = plt.subplots(figsize=(8, 4.8))
+    for accel, (style, colour) in ACCEL_STYLE.items():
+        mine = [r for r in rows if r["accel"] == accel and int(r["triangles"]) >= 900]
+        if not mine:
+            continue
+        ax.loglog([float(r["build_ms"]) for r in mine], [float(r["incoherent_ns_per_ray"]) for r in mine], style[0],
+                  color=colour, label=accel, ms=7)
+        for r in mine:
+            ax.annotate(r["mesh"].replace("sphere ", ""), (float(r["build_ms"]), float(r["incoherent_ns_per_ray"])),
+                        fontsize=7, color=colour, xytext=(4, 2), textcoords="offset points")
+    ax.set(xlabel="build time (ms)", ylabel="time per incoherent ray (ns)",
+           title="Stage 3: build cost against traversal speed, per builder and mesh")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(charts / "stage3-build-vs-trace.png", dpi=110)
+    plt.close(fig)
+
+
 def main(root):
     charts = pathlib.Path(root) / "docs" / "charts"
     sphere_precision(charts)
     offset_vs_scale(charts)
+    accel_time_per_ray(charts)
+    accel_build_vs_trace(charts)
     print(f"charts written to {charts}")
 
 

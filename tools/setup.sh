@@ -15,6 +15,7 @@ packages=(
   libpcg-cpp-dev                  # PCG random numbers
   libgtest-dev                    # unit tests
   libbenchmark-dev                # benchmarks
+  libembree-dev                   # Embree: the production ceiling in the stage-3 benchmarks (optional to the build)
   python3-matplotlib              # charts (tools/make-charts.sh)
 )
 

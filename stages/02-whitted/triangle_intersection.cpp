@@ -34,20 +34,31 @@ std::optional<TriangleHit> intersect_triangle_moller_trumbore(const Ray& ray, Ve
   // END TASK
 }
 
-std::optional<TriangleHit> intersect_triangle_watertight(const Ray& ray, Vec3 v0, Vec3 v1, Vec3 v2,
-                                                         Interval range) {
-  // BEGIN TASK stage2.triangle.watertight
+WatertightRay::WatertightRay(const Ray& ray) : origin(ray.origin), direction(ray.direction) {
+  // BEGIN TASK stage2.triangle.shear
   // Permutation: z is the dimension where the direction is largest; x and y follow cyclically,
   // swapped when d_z < 0 so the triangle's winding (and the signs of U, V, W) is kept.
   const Vec3 abs_d = glm::abs(ray.direction);
-  const int kz = abs_d.x > abs_d.y ? (abs_d.x > abs_d.z ? 0 : 2) : (abs_d.y > abs_d.z ? 1 : 2);
-  int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+  kz = abs_d.x > abs_d.y ? (abs_d.x > abs_d.z ? 0 : 2) : (abs_d.y > abs_d.z ? 1 : 2);
+  kx = (kz + 1) % 3;
+  ky = (kx + 1) % 3;
   if (ray.direction[kz] < 0.0f) std::swap(kx, ky);
   // Shear that maps d onto (0, 0, 1): x' = x - (d_x/d_z) z, y' = y - (d_y/d_z) z, z' = z / d_z.
-  const float shear_x = ray.direction[kx] / ray.direction[kz];
-  const float shear_y = ray.direction[ky] / ray.direction[kz];
-  const float shear_z = 1.0f / ray.direction[kz];
+  shear_x = ray.direction[kx] / ray.direction[kz];
+  shear_y = ray.direction[ky] / ray.direction[kz];
+  shear_z = 1.0f / ray.direction[kz];
+  // PLACEHOLDER
+  // report_unfinished_task("stage2.triangle.shear");
+  // kx = 0, ky = 1, kz = 2;
+  // shear_x = shear_y = 0.0f, shear_z = 1.0f / ray.direction.z;
+  // END TASK
+}
 
+std::optional<TriangleHit> intersect_triangle_watertight(const WatertightRay& ray, Vec3 v0, Vec3 v1, Vec3 v2,
+                                                         Interval range) {
+  // BEGIN TASK stage2.triangle.watertight
+  const int kx = ray.kx, ky = ray.ky, kz = ray.kz;
+  const float shear_x = ray.shear_x, shear_y = ray.shear_y, shear_z = ray.shear_z;
   const Vec3 a = v0 - ray.origin, b = v1 - ray.origin, c = v2 - ray.origin;
   const float ax = a[kx] - shear_x * a[kz], ay = a[ky] - shear_y * a[kz];
   const float bx = b[kx] - shear_x * b[kz], by = b[ky] - shear_y * b[kz];
@@ -92,7 +103,7 @@ std::optional<TriangleHit> intersect_triangle_watertight(const Ray& ray, Vec3 v0
   return TriangleHit{t, v * inv_det, w * inv_det};
   // PLACEHOLDER
   // report_unfinished_task("stage2.triangle.watertight");
-  // return intersect_triangle_moller_trumbore(ray, v0, v1, v2, range);
+  // return intersect_triangle_moller_trumbore(Ray{ray.origin, ray.direction}, v0, v1, v2, range);
   // END TASK
 }
 

@@ -34,13 +34,40 @@ std::optional<TriangleHit> intersect_triangle_moller_trumbore(const Ray& ray, Ve
 // function from the same numbers (with opposite sign), so no ray slips between them; where one is
 // exactly 0 it is recomputed in double. Needs -ffp-contract=off: a fused multiply-add breaks the
 // antisymmetry (docs/build.md).
-std::optional<TriangleHit> intersect_triangle_watertight(const Ray& ray, Vec3 v0, Vec3 v1, Vec3 v2,
+//
+// The permutation and the shear depend on the ray alone, so they are computed once per ray
+// (WatertightRay, task stage2.triangle.shear) and reused for every triangle the ray is tested
+// against, as the paper recommends.
+struct WatertightRay {
+  Vec3 origin, direction;
+  int kx, ky, kz;                   // the permuted axes; kz is where |d| is largest
+  float shear_x, shear_y, shear_z;  // x' = x - shear_x z, y' = y - shear_y z, z' = shear_z z
+  explicit WatertightRay(const Ray& ray);
+};
+
+std::optional<TriangleHit> intersect_triangle_watertight(const WatertightRay& ray, Vec3 v0, Vec3 v1, Vec3 v2,
                                                          Interval range);
+inline std::optional<TriangleHit> intersect_triangle_watertight(const Ray& ray, Vec3 v0, Vec3 v1, Vec3 v2,
+                                                                Interval range) {
+  return intersect_triangle_watertight(WatertightRay(ray), v0, v1, v2, range);
+}
 
 enum class TriangleMethod { moller_trumbore, watertight };
 
-inline std::optional<TriangleHit> intersect_triangle(TriangleMethod method, const Ray& ray, Vec3 v0,
+// A ray with what either test needs, prepared once.
+struct TriangleRay {
+  Ray ray;
+  WatertightRay watertight;
+  explicit TriangleRay(const Ray& r) : ray(r), watertight(r) {}
+};
+
+inline std::optional<TriangleHit> intersect_triangle(TriangleMethod method, const TriangleRay& ray, Vec3 v0,
                                                      Vec3 v1, Vec3 v2, Interval range) {
+  return method == TriangleMethod::watertight ? intersect_triangle_watertight(ray.watertight, v0, v1, v2, range)
+                                              : intersect_triangle_moller_trumbore(ray.ray, v0, v1, v2, range);
+}
+inline std::optional<TriangleHit> intersect_triangle(TriangleMethod method, const Ray& ray, Vec3 v0, Vec3 v1,
+                                                     Vec3 v2, Interval range) {
   return method == TriangleMethod::watertight ? intersect_triangle_watertight(ray, v0, v1, v2, range)
                                               : intersect_triangle_moller_trumbore(ray, v0, v1, v2, range);
 }

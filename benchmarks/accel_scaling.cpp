@@ -1,0 +1,116 @@
+// Writes docs/charts/stage3-accel.csv, the data behind the two stage-3 charts, measured in one run
+// on one thread: time per ray (incoherent and coherent rays) for the naive aggregate, each BVH
+// builder and Embree (when installed), on meshes of 10^2 ... 10^6 triangles and the bunny; and each
+// builder's build time and SAH cost. Prints the ratios the handout quotes.
+// Run through tools/make-charts.sh, or: build/release/bin/accel_scaling OUT.csv
+#include "accel_workloads.h"
+#include "common/obj_loader.h"
+
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <string>
+
+namespace rt::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// Keeps the compiler from dropping the traced rays' results.
+volatile size_t g_sink;
+void benchmark_keep(size_t value) { g_sink = value; }
+
+// Nanoseconds per ray: passes over `rays` until a quarter of a second has gone by (at least 8
+// rays, so that naive on a million triangles still gets measured).
+double ns_per_ray(const std::vector<Ray>& rays, const std::function<bool(const Ray&)>& trace) {
+  size_t traced = 0, hits = 0;
+  const auto start = Clock::now();
+  while (traced < 8 || seconds_since(start) < 0.25) {
+    hits += trace(rays[traced % rays.size()]) ? 1 : 0;
+    ++traced;
+  }
+  benchmark_keep(hits);
+  return seconds_since(start) * 1e9 / double(traced);
+}
+
+struct Row {
+  std::string accel, mesh;
+  size_t triangles;
+  double incoherent_ns, coherent_ns, build_ms, sah_cost;
+};
+
+}  // namespace
+}  // namespace rt::bench
+
+int main(int argc, char** argv) {
+  using namespace rt;
+  using namespace rt::bench;
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: accel_scaling OUT.csv\n");
+    return 2;
+  }
+  std::vector<std::pair<std::string, std::shared_ptr<PrimitiveSet>>> meshes;
+  for (int e = 2; e <= 6; ++e) meshes.push_back({"sphere 1e" + std::to_string(e), sphere_mesh(std::pow(10.0, e))});
+  meshes.push_back({"bunny", single_mesh(load_obj(RT_SOURCE_DIR "/assets/meshes/stanford-bunny.obj"))});
+
+  std::vector<Row> rows;
+  std::map<std::pair<std::string, std::string>, double> incoherent;  // (accel, mesh) -> ns
+  for (const auto& [name, set] : meshes) {
+    const std::vector<Ray> scattered = incoherent_rays(*set, 16384), camera = coherent_rays(*set, 128);
+    auto measure = [&](const std::string& accel, const Aggregate& a, double build_ms, double sah_cost) {
+      auto trace = [&a](const Ray& ray) { return a.closest_hit(ray, Interval::positive()).has_value(); };
+      const Row row{accel, name, set->triangle_count(), ns_per_ray(scattered, trace), ns_per_ray(camera, trace), build_ms, sah_cost};
+      rows.push_back(row);
+      incoherent[{accel, name}] = row.incoherent_ns;
+      std::printf("%-8s %-11s %8zu triangles: %11.1f ns/ray incoherent, %11.1f coherent, build %8.1f ms\n", accel.c_str(),
+                  name.c_str(), row.triangles, row.incoherent_ns, row.coherent_ns, build_ms);
+      std::fflush(stdout);
+    };
+    measure("naive", NaiveAggregate(set), 0.0, 0.0);
+    for (const SplitMethod split : {SplitMethod::median, SplitMethod::middle, SplitMethod::sah}) {
+      BvhBuildOptions o;
+      o.split = split;
+      const auto start = Clock::now();
+      const BvhAggregate bvh(set, o);
+      const double build_ms = seconds_since(start) * 1e3;
+      measure(split_method_name(split), bvh, build_ms, bvh.bvh().stats().sah_cost);
+    }
+#if RT_HAVE_EMBREE
+    const auto start = Clock::now();
+    const EmbreeMesh embree(set->meshes[0].mesh);
+    const double build_ms = seconds_since(start) * 1e3;
+    auto trace = [&embree](const Ray& ray) { return embree.closest_hit(ray).has_value(); };
+    const Row row{"embree", name, set->triangle_count(), ns_per_ray(scattered, trace), ns_per_ray(camera, trace), build_ms, 0.0};
+    rows.push_back(row);
+    incoherent[{"embree", name}] = row.incoherent_ns;
+    std::printf("%-8s %-11s %8zu triangles: %11.1f ns/ray incoherent, %11.1f coherent, build %8.1f ms\n", "embree",
+                name.c_str(), row.triangles, row.incoherent_ns, row.coherent_ns, build_ms);
+#endif
+  }
+
+  std::FILE* out = std::fopen(argv[1], "w");
+  if (!out) {
+    std::fprintf(stderr, "accel_scaling: cannot write %s\n", argv[1]);
+    return 1;
+  }
+  std::fprintf(out, "accel,mesh,triangles,incoherent_ns_per_ray,coherent_ns_per_ray,build_ms,sah_cost\n");
+  for (const Row& r : rows)
+    std::fprintf(out, "%s,%s,%zu,%.2f,%.2f,%.3f,%.3f\n", r.accel.c_str(), r.mesh.c_str(), r.triangles, r.incoherent_ns,
+                 r.coherent_ns, r.build_ms, r.sah_cost);
+  if (std::fclose(out) != 0) return 1;
+
+  std::printf("\nratios, incoherent rays, one thread, this run:\n");
+  for (const char* m : {"sphere 1e5", "sphere 1e6", "bunny"})
+    std::printf("  %-11s SAH vs naive %8.0fx   SAH vs median %.2fx   SAH vs middle %.2fx\n", m,
+                incoherent[{"naive", m}] / incoherent[{"sah", m}], incoherent[{"median", m}] / incoherent[{"sah", m}],
+                incoherent[{"middle", m}] / incoherent[{"sah", m}]);
+#if RT_HAVE_EMBREE
+  for (const char* m : {"sphere 1e5", "sphere 1e6", "bunny"})
+    std::printf("  %-11s SAH reaches %.0f%% of Embree's rays per second; Embree vs naive %.0fx\n", m,
+                100.0 * incoherent[{"embree", m}] / incoherent[{"sah", m}], incoherent[{"naive", m}] / incoherent[{"embree", m}]);
+#endif
+  return 0;
+}

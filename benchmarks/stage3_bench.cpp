@@ -1,0 +1,131 @@
+// Stage 3 timings (Google Benchmark): time per ray for the naive aggregate and each BVH builder on
+// meshes of 10^2 ... 10^6 triangles and on the Stanford bunny, with incoherent and coherent rays,
+// on 1 and 2 threads; build time per builder and size; Embree on the same rays when installed.
+// Run: build/release/bin/stage3_bench   (--benchmark_filter=Trace/sah to pick)
+#include "accel_workloads.h"
+#include "common/obj_loader.h"
+
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <mutex>
+
+namespace rt::bench {
+namespace {
+
+// Mesh id: 2..6 = 10^id triangles, 0 = the bunny. Built once and shared by every benchmark.
+std::shared_ptr<PrimitiveSet> mesh(int id) {
+  static std::map<int, std::shared_ptr<PrimitiveSet>> cache;
+  static std::mutex lock;
+  const std::lock_guard<std::mutex> guard(lock);
+  auto& set = cache[id];
+  if (!set) set = id == 0 ? single_mesh(load_obj(RT_SOURCE_DIR "/assets/meshes/stanford-bunny.obj")) : sphere_mesh(std::pow(10.0, id));
+  return set;
+}
+
+const std::vector<Ray>& rays(int id, bool coherent) {
+  static std::map<std::pair<int, bool>, std::vector<Ray>> cache;
+  static std::mutex lock;
+  const std::lock_guard<std::mutex> guard(lock);
+  auto& r = cache[{id, coherent}];
+  if (r.empty()) r = coherent ? coherent_rays(*mesh(id), 128) : incoherent_rays(*mesh(id), 16384);
+  return r;
+}
+
+// One aggregate per (accelerator, mesh), shared by the threads of a benchmark.
+const Aggregate& aggregate(const std::string& accel, int id) {
+  static std::map<std::pair<std::string, int>, std::unique_ptr<Aggregate>> cache;
+  static std::mutex lock;
+  const std::lock_guard<std::mutex> guard(lock);
+  auto& a = cache[{accel, id}];
+  if (!a) {
+    if (accel == "naive") {
+      a = std::make_unique<NaiveAggregate>(mesh(id));
+    } else {
+      BvhBuildOptions o;
+      o.split = split_method_from_name(accel);
+      a = std::make_unique<BvhAggregate>(mesh(id), o);
+    }
+  }
+  return *a;
+}
+
+void trace(benchmark::State& state, const std::string& accel, bool coherent) {
+  const int id = int(state.range(0));
+  const Aggregate& a = aggregate(accel, id);
+  const std::vector<Ray>& r = rays(id, coherent);
+  size_t i = size_t(state.thread_index()) * 7919, hits = 0;
+  for (auto _ : state) {
+    const auto hit = a.closest_hit(r[i % r.size()], Interval::positive());
+    hits += hit ? 1 : 0;
+    benchmark::DoNotOptimize(hit);
+    ++i;
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["triangles"] = double(mesh(id)->triangle_count());
+  state.counters["ns_per_ray"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["hit_fraction"] = double(hits) / double(state.iterations());
+}
+
+void register_all() {
+  for (const bool coherent : {false, true}) {
+    const std::string kind = coherent ? "coherent" : "incoherent";
+    for (const std::string accel : {"naive", "median", "middle", "sah"}) {
+      auto* b = benchmark::RegisterBenchmark(("Trace/" + accel + "/" + kind).c_str(),
+                                             [accel, coherent](benchmark::State& s) { trace(s, accel, coherent); });
+      // Naive costs ~20 ns per triangle per ray; past 10^5 triangles a handful of rays is all it gets.
+      for (const int id : {2, 3, 4, 5, 6, 0})
+        if (accel != "naive" || id <= 5 || !coherent) b->Arg(id);
+      if (accel == "naive") b->MinTime(0.2);
+      if (accel == "sah") b->Threads(1)->Threads(2);
+      b->UseRealTime();
+    }
+  }
+  for (const std::string method : {"median", "middle", "sah"}) {
+    auto* b = benchmark::RegisterBenchmark(("Build/" + method).c_str(), [method](benchmark::State& s) {
+      const auto set = mesh(int(s.range(0)));
+      BvhBuildOptions o;
+      o.split = split_method_from_name(method);
+      for (auto _ : s) benchmark::DoNotOptimize(BvhAggregate(set, o));
+      s.counters["triangles"] = double(set->triangle_count());
+    });
+    for (const int id : {2, 3, 4, 5, 6, 0}) b->Arg(id);
+    b->Unit(benchmark::kMillisecond);
+  }
+#if RT_HAVE_EMBREE
+  for (const bool coherent : {false, true}) {
+    auto* b = benchmark::RegisterBenchmark((std::string("Trace/embree/") + (coherent ? "coherent" : "incoherent")).c_str(),
+                                           [coherent](benchmark::State& s) {
+      const int id = int(s.range(0));
+      static std::map<int, std::unique_ptr<EmbreeMesh>> cache;
+      static std::mutex lock;
+      const EmbreeMesh* embree;
+      {
+        const std::lock_guard<std::mutex> guard(lock);
+        auto& e = cache[id];
+        if (!e) e = std::make_unique<EmbreeMesh>(mesh(id)->meshes[0].mesh);
+        embree = e.get();
+      }
+      const std::vector<Ray>& r = rays(id, coherent);
+      size_t i = size_t(s.thread_index()) * 7919;
+      for (auto _ : s) benchmark::DoNotOptimize(embree->closest_hit(r[i++ % r.size()]));
+      s.SetItemsProcessed(s.iterations());
+      s.counters["ns_per_ray"] = benchmark::Counter(double(s.iterations()), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    });
+    for (const int id : {2, 3, 4, 5, 6, 0}) b->Arg(id);
+    b->Threads(1)->Threads(2)->UseRealTime();
+  }
+#endif
+}
+
+}  // namespace
+}  // namespace rt::bench
+
+int main(int argc, char** argv) {
+  rt::bench::register_all();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

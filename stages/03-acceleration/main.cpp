@@ -1,0 +1,104 @@
+// stage3: renders a scene like stage 2, with the bounded primitives in a chosen acceleration
+// structure, and reports what the structure cost and what it bought.
+#include "01-ray-casting/program.h"
+#include "02-whitted/whitted.h"
+#include "03-acceleration/bvh_aggregate.h"
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+
+namespace rt {
+namespace {
+
+// Counts the rays an aggregate answers (closest-hit and shadow queries alike) for the rays/s figure.
+class CountingAggregate : public Aggregate {
+ public:
+  explicit CountingAggregate(std::unique_ptr<Aggregate> inner) : inner_(std::move(inner)) {}
+  std::optional<PrimitiveHit> closest_hit(const Ray& ray, Interval range) const override {
+    rays_.fetch_add(1, std::memory_order_relaxed);
+    return inner_->closest_hit(ray, range);
+  }
+  bool occluded(const Ray& ray, Interval range) const override {
+    rays_.fetch_add(1, std::memory_order_relaxed);
+    return inner_->occluded(ray, range);
+  }
+  const Aggregate& inner() const { return *inner_; }
+  std::uint64_t rays() const { return rays_.load(); }
+
+ private:
+  std::unique_ptr<Aggregate> inner_;
+  mutable std::atomic<std::uint64_t> rays_{0};
+};
+
+}  // namespace
+}  // namespace rt
+
+int main(int argc, char** argv) {
+  using namespace rt;
+  CommonOptions options;
+  std::string debug_name = "none", accel_name = "sah";
+  int leaf_size = 4;
+
+  return run_stage_program(
+      argc, argv, "stage3", "Stage 3: Whitted ray tracing over a bounding volume hierarchy", options,
+      [&](CLI::App& app) {
+        add_max_depth_flag(app, options);
+        app.add_option("--accel", accel_name, "Acceleration structure: naive (every primitive), median, middle or sah")
+            ->check(CLI::IsMember({"naive", "median", "middle", "sah"}));
+        app.add_option("--leaf-size", leaf_size, "Largest leaf a BVH builder makes without trying to split")
+            ->check(CLI::Range(1, 255));
+        app.add_option("--debug", debug_name, "Debug view instead of shading: none, normal, depth, albedo")
+            ->check(CLI::IsMember({"none", "normal", "depth", "albedo"}));
+      },
+      [&] {
+        const DebugView view = debug_view_from_name(debug_name);
+        const SceneDescription description = load_scene(options.scene);
+        const RenderSettings settings = options.settings_for(description);
+        BvhBuildOptions build;
+        build.max_leaf_size = leaf_size;
+        const bool naive = accel_name == "naive";
+        if (!naive) build.split = split_method_from_name(accel_name);
+
+        const auto build_start = std::chrono::steady_clock::now();
+        const CountingAggregate* counter = nullptr;
+        const WhittedScene scene(description, TriangleMethod::watertight, [&](std::shared_ptr<const PrimitiveSet> p) {
+          auto inner = naive ? naive_aggregate_factory()(std::move(p)) : bvh_aggregate_factory(build)(std::move(p));
+          auto counting = std::make_unique<CountingAggregate>(std::move(inner));
+          counter = counting.get();
+          return counting;
+        });
+        const double build_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
+
+        const size_t triangles = scene.triangle_count(), spheres = scene.primitives().spheres.size();
+        std::printf("stage3: %zu triangles, %zu spheres; accelerator %s", triangles, spheres, accel_name.c_str());
+        if (const auto* bvh = dynamic_cast<const BvhAggregate*>(&counter->inner())) {
+          const BvhStats s = bvh->bvh().stats();
+          size_t mesh_bytes = 0;
+          for (const MeshEntry& m : scene.primitives().meshes)
+            mesh_bytes += m.mesh.positions.size() * sizeof(Vec3) + m.mesh.triangles.size() * sizeof(m.mesh.triangles[0]);
+          std::printf(" (leaf size %d), built in %.3f s\n", leaf_size, build_seconds);
+          std::printf("stage3: %zu nodes, %zu leaves, depth %zu, primitives per leaf %.2f mean / %zu max, SAH cost %.1f\n",
+                      s.nodes, s.leaves, s.depth, s.mean_leaf_primitives, s.max_leaf_primitives, s.sah_cost);
+          if (triangles > 0)
+            std::printf("stage3: memory %.1f bytes per triangle (mesh %.1f + BVH %.1f)\n",
+                        double(mesh_bytes + bvh->bytes()) / double(triangles), double(mesh_bytes) / double(triangles),
+                        double(bvh->bytes()) / double(triangles));
+        } else {
+          std::printf(", nothing to build\n");
+        }
+
+        WhittedOptions whitted;
+        whitted.max_depth = settings.max_depth;
+        const PinholeCamera camera(description.camera, settings.width, settings.height);
+        const auto render_start = std::chrono::steady_clock::now();
+        render_and_write("stage3", options, settings, camera, view, [&](const Ray& ray, Rng&) {
+          return view == DebugView::none ? whitted_radiance(scene, ray, whitted) : whitted_debug(scene, ray, view);
+        });
+        const double render_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start).count();
+        std::printf("stage3: %s rays traced, %s rays/s\n", format_si(double(counter->rays())).c_str(),
+                    format_si(double(counter->rays()) / render_seconds).c_str());
+      });
+}

@@ -1,0 +1,112 @@
+// Shared by the stage-3 BVH tests: the builders under test, the meshes, random rays, and the
+// comparison of two aggregates.
+#pragma once
+
+#include "03-acceleration/bvh_aggregate.h"
+#include "common/obj_loader.h"
+#include "common/random.h"
+
+#include "support/test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace rt {
+
+using testing::source_path;
+
+struct Builder {
+  const char* name;
+  SplitMethod split;
+  int leaf_size;
+};
+inline void PrintTo(const Builder& b, std::ostream* out) { *out << b.name; }
+inline const Builder kBuilders[] = {{"median", SplitMethod::median, 4}, {"middle", SplitMethod::middle, 4},
+                             {"sah", SplitMethod::sah, 4},       {"median_leaf1", SplitMethod::median, 1},
+                             {"sah_leaf16", SplitMethod::sah, 16}};
+
+inline std::shared_ptr<PrimitiveSet> primitives_of(std::vector<TriangleMesh> meshes, std::vector<Sphere> spheres = {}) {
+  auto set = std::make_shared<PrimitiveSet>();
+  for (TriangleMesh& mesh : meshes) set->meshes.push_back({std::move(mesh), 0, int(set->meshes.size())});
+  for (const Sphere& s : spheres) set->spheres.push_back({s, 0, int(set->spheres.size())});
+  return set;
+}
+
+inline const std::shared_ptr<PrimitiveSet>& bunny() {
+  static const auto set = primitives_of({load_obj(source_path("assets/meshes/stanford-bunny.obj"))});
+  return set;
+}
+
+// A generated closed mesh (a jittered UV sphere, 1,012 triangles) plus spheres that overlap it.
+inline std::shared_ptr<PrimitiveSet> mix() {
+  return primitives_of({make_uv_sphere(12, 44, 0.3f, 8)},
+                       {Sphere{Vec3(1.1f, 0, 0), 0.4f}, Sphere{Vec3(0, 0, 0), 0.5f}, Sphere{Vec3(-1, 1, 0.5f), 0.2f},
+                        Sphere{Vec3(0, -1.3f, 0), 0.3f}});
+}
+
+inline Aabb bounds_of(const PrimitiveSet& set) {
+  Aabb box;
+  for (const MeshEntry& m : set.meshes)
+    for (const Vec3& p : m.mesh.positions) box.expand(p);
+  for (const SphereEntry& s : set.spheres) {
+    box.expand(s.sphere.center - Vec3(s.sphere.radius));
+    box.expand(s.sphere.center + Vec3(s.sphere.radius));
+  }
+  return box;
+}
+
+// Rays from a sphere around the scene aimed into its box (most hit), from inside the box in any
+// direction, and some exactly axis-aligned (zero direction components).
+inline std::vector<Ray> random_rays(const PrimitiveSet& set, int count, std::uint64_t seed) {
+  const Aabb box = bounds_of(set);
+  const Vec3 centre = box.centroid();
+  const float radius = glm::length(box.extent());
+  Rng rng(seed, 0, 0);
+  auto in_box = [&] { return box.lo + Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * box.extent(); };
+  std::vector<Ray> rays;
+  for (int i = 0; i < count; ++i) {
+    Vec3 origin, direction;
+    if (i % 4 == 3) {
+      origin = in_box();
+      direction = glm::normalize(Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f);
+    } else {
+      const Vec3 u = glm::normalize(Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f);
+      origin = centre + radius * u;
+      direction = glm::normalize(in_box() - origin);
+    }
+    if (i % 10 == 5) direction = Vec3(0, 0, direction.z < 0 ? -1.0f : 1.0f);
+    rays.push_back(Ray{origin, direction});
+  }
+  return rays;
+}
+
+// Same hit or miss, same t, and the same primitive unless two primitives are hit at exactly the
+// same t (a ray through a shared edge), where either is right.
+inline void expect_same_answers(const std::vector<std::optional<PrimitiveHit>>& truth, const Aggregate& tested,
+                                const std::vector<Ray>& rays) {
+  int mismatches = 0, hits = 0;
+  for (size_t i = 0; i < rays.size() && mismatches < 5; ++i) {
+    const auto& a = truth[i];
+    const auto b = tested.closest_hit(rays[i], Interval::positive());
+    hits += a ? 1 : 0;
+    const bool same_primitive = a && b && a->sphere == b->sphere && a->mesh == b->mesh && a->triangle == b->triangle;
+    const bool same = a.has_value() == b.has_value() &&
+                      (!a || (a->t == b->t && (!same_primitive || (a->b1 == b->b1 && a->b2 == b->b2))));
+    if (!same) {
+      ++mismatches;
+      ADD_FAILURE() << "ray " << i << ": reference " << (a ? std::to_string(a->t) : "miss") << ", tested "
+                    << (b ? std::to_string(b->t) : "miss");
+    }
+  }
+  EXPECT_GT(hits, int(rays.size()) / 3) << "the rays must mostly hit something";
+}
+
+inline void expect_same_answers(const Aggregate& reference, const Aggregate& tested, const std::vector<Ray>& rays) {
+  std::vector<std::optional<PrimitiveHit>> truth;
+  for (const Ray& ray : rays) truth.push_back(reference.closest_hit(ray, Interval::positive()));
+  expect_same_answers(truth, tested, rays);
+}
+
+}  // namespace rt
