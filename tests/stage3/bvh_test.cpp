@@ -38,20 +38,6 @@ TEST_P(Builders, AnyHitAgreesWithClosestHit) {
   EXPECT_LT(occluded, 19000);
 }
 
-// Brute force once, then every builder against it: same hit or miss, same t, same primitive.
-void expect_builders_agree_with_naive(const std::shared_ptr<PrimitiveSet>& set, const std::vector<Ray>& rays) {
-  const NaiveAggregate naive(set);
-  std::vector<std::optional<PrimitiveHit>> truth;
-  for (const Ray& ray : rays) truth.push_back(naive.closest_hit(ray, Interval::positive()));
-  for (const Builder& b : kBuilders) {
-    BvhBuildOptions o;
-    o.split = b.split;
-    o.max_leaf_size = b.leaf_size;
-    SCOPED_TRACE(b.name);
-    expect_same_answers(truth, BvhAggregate(set, o), rays);
-  }
-}
-
 TEST(BvhAgainstNaive, MixOfSpheresAndTriangles) {
   const auto set = mix();
   expect_builders_agree_with_naive(set, random_rays(*set, 100000, 1));

@@ -109,4 +109,18 @@ inline void expect_same_answers(const Aggregate& reference, const Aggregate& tes
   expect_same_answers(truth, tested, rays);
 }
 
+// Brute force once, then every builder against it: same hit or miss, same t, same primitive.
+inline void expect_builders_agree_with_naive(const std::shared_ptr<PrimitiveSet>& set, const std::vector<Ray>& rays) {
+  const NaiveAggregate naive(set);
+  std::vector<std::optional<PrimitiveHit>> truth;
+  for (const Ray& ray : rays) truth.push_back(naive.closest_hit(ray, Interval::positive()));
+  for (const Builder& b : kBuilders) {
+    BvhBuildOptions o;
+    o.split = b.split;
+    o.max_leaf_size = b.leaf_size;
+    SCOPED_TRACE(b.name);
+    expect_same_answers(truth, BvhAggregate(set, o), rays);
+  }
+}
+
 }  // namespace rt
