@@ -133,16 +133,18 @@ class Builder {
       : primitives_(std::move(primitives)), options_(options) {}
 
   Bvh build() && {
-    bvh_.nodes.reserve(2 * primitives_.size() + 1);
-    build_node(primitives_.begin(), primitives_.end(), 0);
+    bvh_.nodes.reserve(2 * primitives_.size() + 2);
+    // The root, then one unused node, so that every sibling pair starts at an even index: with
+    // the array on a 64-byte boundary, each pair is one cache line.
+    bvh_.nodes.resize(2);
+    build_node(0, primitives_.begin(), primitives_.end(), 0);
     for (const BuildPrimitive& p : primitives_) bvh_.order.push_back(p.index);
     return std::move(bvh_);
   }
 
  private:
-  std::uint32_t build_node(Iterator begin, Iterator end, int depth) {
-    const auto index = std::uint32_t(bvh_.nodes.size());
-    bvh_.nodes.emplace_back();
+  // Builds the subtree of [begin, end) into the node at `index`, already allocated.
+  void build_node(std::uint32_t index, Iterator begin, Iterator end, int depth) {
     Aabb bounds, centroid_bounds;
     for (Iterator p = begin; p != end; ++p) {
       bounds.expand(p->bounds);
@@ -169,12 +171,13 @@ class Builder {
 
     if (split == end || split == begin) {
       bvh_.nodes[index] = BvhNode{bounds, std::uint32_t(begin - primitives_.begin()), std::uint16_t(count), 0, 1};
-      return index;
+      return;
     }
-    build_node(begin, split, depth + 1);
-    const std::uint32_t second = build_node(split, end, depth + 1);
-    bvh_.nodes[index] = BvhNode{bounds, second, 0, std::uint8_t(axis), 0};
-    return index;
+    const auto first = std::uint32_t(bvh_.nodes.size());
+    bvh_.nodes.resize(bvh_.nodes.size() + 2);
+    bvh_.nodes[index] = BvhNode{bounds, first, 0, std::uint8_t(axis), 0};
+    build_node(first, begin, split, depth + 1);
+    build_node(first + 1, split, end, depth + 1);
   }
 
   std::vector<BuildPrimitive> primitives_;
@@ -196,7 +199,6 @@ Bvh build_bvh(const std::vector<Aabb>& primitive_bounds, const BvhBuildOptions& 
 
 BvhStats Bvh::stats() const {
   BvhStats s;
-  s.nodes = nodes.size();
   if (nodes.empty()) return s;
   const float root_area = nodes[0].bounds.half_area();
   size_t leaf_primitives = 0;
@@ -207,6 +209,7 @@ BvhStats Bvh::stats() const {
     stack.pop_back();
     const BvhNode& node = nodes[index];
     s.depth = std::max(s.depth, depth);
+    ++s.nodes;
     const double relative_area = root_area > 0.0f ? double(node.bounds.half_area() / root_area) : 1.0;
     if (node.is_leaf) {
       ++s.leaves;
@@ -215,8 +218,8 @@ BvhStats Bvh::stats() const {
       s.sah_cost += relative_area * BvhBuildOptions::kIntersectionCost * node.count;
     } else {
       s.sah_cost += relative_area * BvhBuildOptions::kTraversalCost;
-      stack.push_back({index + 1, depth + 1});
       stack.push_back({node.offset, depth + 1});
+      stack.push_back({node.offset + 1, depth + 1});
     }
   }
   s.mean_leaf_primitives = s.leaves ? double(leaf_primitives) / double(s.leaves) : 0.0;

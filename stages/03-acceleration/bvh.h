@@ -5,6 +5,7 @@
 #include "03-acceleration/aabb.h"
 
 #include <cstdint>
+#include <new>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,11 +40,12 @@ struct BvhBuildOptions {
   static constexpr int kMaxFreeDepth = 36;
 };
 
-// 32 bytes, two to a cache line. The first child of an interior node is the next node in the
-// array (depth-first order), so only the second child's index is stored.
+// 32 bytes, two to a cache line. The two children of an interior node are stored side by side,
+// so only the first one's index is kept, and the traversal, which tests both children's boxes at
+// their parent, reads one cache line per interior node.
 struct BvhNode {
   Aabb bounds;               // 24 bytes
-  std::uint32_t offset;      // leaf: first entry in Bvh::order; interior: index of the second child
+  std::uint32_t offset;      // leaf: first entry in Bvh::order; interior: index of the first child
   std::uint16_t count;       // leaf: number of primitives (0 only for an empty tree); interior: 0
   std::uint8_t axis;         // interior: the split axis (kept for analysis; traversal orders by entry t)
   std::uint8_t is_leaf;
@@ -56,8 +58,23 @@ struct BvhStats {
   double sah_cost = 0.0;  // the tree's SAH cost with the constants above, per ray through the root
 };
 
+// Allocates on 64-byte boundaries (C++17 aligned new), so that each sibling pair of nodes, which
+// starts at an even index, is exactly one cache line.
+template <class T>
+struct CacheLineAllocator {
+  using value_type = T;
+  static constexpr std::align_val_t kAlignment{64};
+  CacheLineAllocator() = default;
+  template <class U>
+  CacheLineAllocator(const CacheLineAllocator<U>&) {}
+  T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
+  void deallocate(T* p, size_t) { ::operator delete(p, kAlignment); }
+  friend bool operator==(const CacheLineAllocator&, const CacheLineAllocator&) { return true; }
+};
+
 struct Bvh {
-  std::vector<BvhNode> nodes;       // nodes[0] is the root
+  // nodes[0] is the root; nodes[1] is unused (padding); then sibling pairs (2k, 2k + 1).
+  std::vector<BvhNode, CacheLineAllocator<BvhNode>> nodes;
   std::vector<std::uint32_t> order; // primitive indices in leaf order
 
   BvhStats stats() const;

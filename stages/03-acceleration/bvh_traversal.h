@@ -33,7 +33,7 @@ std::optional<std::pair<float, std::uint32_t>> bvh_closest_hit(const Bvh& bvh, c
         }
     } else {
       // Test both children's boxes here, go on into the nearer one, keep the other for later.
-      const std::uint32_t first = current + 1, second = node.offset;
+      const std::uint32_t first = node.offset, second = node.offset + 1;
       const std::optional<float> t_first = intersect_aabb(bvh.nodes[first].bounds, inverse, range);
       const std::optional<float> t_second = intersect_aabb(bvh.nodes[second].bounds, inverse, range);
       if (t_first && t_second) {
@@ -80,7 +80,7 @@ bool bvh_any_hit(const Bvh& bvh, const Ray& ray, Interval range, HitsPrimitive&&
         if (hits_primitive(slot, range)) return true;
     } else {
       // Any order will do: the first occluder ends the walk.
-      const std::uint32_t first = current + 1, second = node.offset;
+      const std::uint32_t first = node.offset, second = node.offset + 1;
       const bool enter_first = intersect_aabb(bvh.nodes[first].bounds, inverse, range).has_value();
       const bool enter_second = intersect_aabb(bvh.nodes[second].bounds, inverse, range).has_value();
       if (enter_first && enter_second) stack[stack_size++] = second;

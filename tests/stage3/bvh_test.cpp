@@ -78,7 +78,7 @@ void expect_valid_tree(const Bvh& bvh, const std::vector<Aabb>& bounds) {
         EXPECT_TRUE(node.bounds.contains(bounds[bvh.order[slot]]));
       }
     } else {
-      for (const std::uint32_t child : {index + 1, node.offset}) {
+      for (const std::uint32_t child : {node.offset, node.offset + 1}) {
         ASSERT_LT(child, bvh.nodes.size());
         EXPECT_TRUE(node.bounds.contains(bvh.nodes[child].bounds)) << "child " << child << " outside its parent";
         stack.push_back({child, d + 1});
