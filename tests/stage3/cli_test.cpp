@@ -36,6 +36,14 @@ TEST(Stage3Cli, EveryAcceleratorRendersTheSamePicture) {
   }
 }
 
+TEST(Stage3Cli, SameImageForAnyThreadCount) {
+  ScratchDir dir;
+  const std::string base = "--scene " + source_path("assets/scenes/bunny.json").string() + " --width 48 --height 36 --spp 2";
+  ASSERT_EQ(run_command(stage3(base + " --threads 1 --out " + (dir / "one.pfm").string()), dir).exit_code, 0);
+  ASSERT_EQ(run_command(stage3(base + " --threads 2 --out " + (dir / "two.pfm").string()), dir).exit_code, 0);
+  EXPECT_TRUE(read_pfm(dir / "one.pfm") == read_pfm(dir / "two.pfm"));
+}
+
 TEST(Stage3Cli, ReportsTheTree) {
   ScratchDir dir;
   const auto r = run_command(stage3("--scene " + source_path("assets/scenes/bunny.json").string() +
