@@ -43,11 +43,12 @@ bool LinearAggregate::misses_bound(size_t mesh, const Ray& ray, Interval range) 
   return !span || span->max <= range.min || span->min >= range.max;
 }
 
-std::optional<PrimitiveHit> LinearAggregate::closest_hit(const Ray& ray, Interval range) const {
-  std::optional<PrimitiveHit> closest;
+std::optional<PrimitiveHit> LinearAggregate::search(const Ray& ray, Interval range, bool any_hit) const {
+  std::optional<PrimitiveHit> found;
   for (size_t i = 0; i < primitives_->spheres.size(); ++i)
     if (const auto t = intersect_sphere_stable(ray, primitives_->spheres[i].sphere, range)) {
-      closest = PrimitiveHit{*t, int(i)};
+      found = PrimitiveHit{*t, int(i)};
+      if (any_hit) return found;
       range.max = *t;
     }
   const TriangleMethod method = primitives_->triangle_method;
@@ -59,28 +60,20 @@ std::optional<PrimitiveHit> LinearAggregate::closest_hit(const Ray& ray, Interva
     for (size_t k = 0; k < mesh.triangles.size(); ++k) {
       const auto& c = mesh.triangles[k];
       if (const auto hit = intersect_triangle(method, prepared, p[c[0]], p[c[1]], p[c[2]], range)) {
-        closest = PrimitiveHit{hit->t, -1, int(m), int(k), hit->b1, hit->b2};
+        found = PrimitiveHit{hit->t, -1, int(m), int(k), hit->b1, hit->b2};
+        if (any_hit) return found;
         range.max = hit->t;
       }
     }
   }
-  return closest;
+  return found;
 }
 
-bool LinearAggregate::occluded(const Ray& ray, Interval range) const {
-  for (const SphereEntry& s : primitives_->spheres)
-    if (intersect_sphere_stable(ray, s.sphere, range)) return true;
-  const TriangleMethod method = primitives_->triangle_method;
-  const TriangleRay prepared(ray);
-  for (size_t m = 0; m < primitives_->meshes.size(); ++m) {
-    if (misses_bound(m, ray, range)) continue;
-    const TriangleMesh& mesh = primitives_->meshes[m].mesh;
-    const auto& p = mesh.positions;
-    for (const auto& c : mesh.triangles)
-      if (intersect_triangle(method, prepared, p[c[0]], p[c[1]], p[c[2]], range)) return true;
-  }
-  return false;
+std::optional<PrimitiveHit> LinearAggregate::closest_hit(const Ray& ray, Interval range) const {
+  return search(ray, range, false);
 }
+
+bool LinearAggregate::occluded(const Ray& ray, Interval range) const { return search(ray, range, true).has_value(); }
 
 std::unique_ptr<Aggregate> make_linear_aggregate(std::shared_ptr<const PrimitiveSet> primitives) {
   return std::make_unique<LinearAggregate>(std::move(primitives));

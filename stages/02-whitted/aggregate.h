@@ -65,6 +65,8 @@ class LinearAggregate : public Aggregate {
 
  private:
   bool misses_bound(size_t mesh, const Ray& ray, Interval range) const;
+  // Both queries in one loop: the nearest hit, or with `any_hit` the first one found.
+  std::optional<PrimitiveHit> search(const Ray& ray, Interval range, bool any_hit) const;
 
   std::shared_ptr<const PrimitiveSet> primitives_;
   std::vector<std::optional<Sphere>> bounds_;  // per mesh
