@@ -54,6 +54,16 @@ TEST(Stage3Cli, ReportsTheTree) {
     EXPECT_NE(r.out.find(figure), std::string::npos) << figure << " in:\n" << r.out;
 }
 
+TEST(Stage3Cli, RendersAMillionTriangles) {
+  // Sixteen placed copies of the bunny: 1,111,216 triangles in one tree.
+  ScratchDir dir;
+  const auto r = run_command(stage3("--scene " + source_path("assets/scenes/bunnies.json").string() +
+                                    " --width 24 --height 16 --spp 1 --accel middle --out " + (dir / "b.png").string()), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("1111216 triangles"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir / "b.png"));
+}
+
 TEST(Stage3Cli, BadFlagsAreUsageErrors) {
   ScratchDir dir;
   const std::string base = "--scene " + source_path("assets/scenes/whitted.json").string() + " --out " + (dir / "x.png").string();
