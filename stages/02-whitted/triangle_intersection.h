@@ -68,8 +68,7 @@ inline std::optional<TriangleHit> intersect_triangle(TriangleMethod method, cons
 }
 inline std::optional<TriangleHit> intersect_triangle(TriangleMethod method, const Ray& ray, Vec3 v0, Vec3 v1,
                                                      Vec3 v2, Interval range) {
-  return method == TriangleMethod::watertight ? intersect_triangle_watertight(ray, v0, v1, v2, range)
-                                              : intersect_triangle_moller_trumbore(ray, v0, v1, v2, range);
+  return intersect_triangle(method, TriangleRay(ray), v0, v1, v2, range);
 }
 
 }  // namespace rt

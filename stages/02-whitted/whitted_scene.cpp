@@ -74,17 +74,26 @@ Hit WhittedScene::triangle_hit_record(const PrimitiveHit& found, const Ray& ray)
   return hit;
 }
 
+namespace {
+
+// The hit record of a sphere or plane hit, whose point has been projected back onto the surface.
+Hit surface_hit(const Ray& ray, float t, const SurfacePoint& surface, Vec3 outward_normal, int material, int shape) {
+  Hit hit;
+  hit.t = t;
+  hit.point = surface.point;
+  hit.point_error = surface.error;
+  hit.set_face_normal(ray, outward_normal);
+  hit.material = material;
+  hit.primitive = shape;
+  return hit;
+}
+
+}  // namespace
+
 Hit WhittedScene::sphere_hit_record(const PrimitiveHit& found, const Ray& ray) const {
   const SphereEntry& entry = primitives_->spheres[size_t(found.sphere)];
   const SurfacePoint surface = sphere_point(ray.at(found.t), entry.sphere);
-  Hit hit;
-  hit.t = found.t;
-  hit.point = surface.point;
-  hit.point_error = surface.error;
-  hit.set_face_normal(ray, sphere_normal(entry.sphere, surface.point));
-  hit.material = entry.material;
-  hit.primitive = entry.shape;
-  return hit;
+  return surface_hit(ray, found.t, surface, sphere_normal(entry.sphere, surface.point), entry.material, entry.shape);
 }
 
 std::optional<Hit> WhittedScene::closest_hit(const Ray& ray, Interval range) const {
@@ -95,15 +104,7 @@ std::optional<Hit> WhittedScene::closest_hit(const Ray& ray, Interval range) con
   }
   for (const PlaneEntry& p : planes_)
     if (const auto t = intersect_plane(ray, p.plane, range)) {
-      const SurfacePoint surface = plane_point(ray.at(*t), p.plane);
-      Hit hit;
-      hit.t = *t;
-      hit.point = surface.point;
-      hit.point_error = surface.error;
-      hit.set_face_normal(ray, p.plane.normal);
-      hit.material = p.material;
-      hit.primitive = p.shape;
-      closest = hit;
+      closest = surface_hit(ray, *t, plane_point(ray.at(*t), p.plane), p.plane.normal, p.material, p.shape);
       range.max = *t;
     }
   return closest;
