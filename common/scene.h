@@ -43,14 +43,17 @@ enum class MaterialType {
   diffuse,     // Lambert + Blinn-Phong, shaded from the lights (stage 1 on)
   mirror,      // perfect specular reflection (stage 2 on)
   dielectric,  // glass: Fresnel-weighted reflection and refraction (stage 2 on)
+  phong,       // Lambert plus an energy-conserving (normalized) Phong lobe (stage 4 on)
+  microfacet,  // GGX microfacet reflection with Smith masking, a rough metal (stage 4 on)
 };
 
 struct Material {
   std::string name;
   MaterialType type = MaterialType::diffuse;
   Color albedo{0.8f};      // diffuse reflectance rho in [0, 1] per channel
-  Color specular{0.0f};    // Blinn-Phong specular reflectance in [0, 1]
-  float shininess = 32.0f; // Blinn-Phong exponent
+  Color specular{0.0f};    // diffuse: Blinn-Phong specular; phong: lobe albedo; microfacet: F0
+  float shininess = 32.0f; // diffuse: Blinn-Phong exponent; phong: the lobe's exponent
+  float roughness = 0.2f;  // microfacet: GGX alpha in [0.001, 1]
   Color emission{0.0f};    // emitted radiance Le, from the front face only
   std::optional<Checker> checker;
   Color reflectance{1.0f}; // mirror: fraction reflected per channel
@@ -98,7 +101,14 @@ struct Mesh {
   Transform transform;
 };
 
-using Geometry = std::variant<Sphere, Plane, Torus, Triangle, Quad, Mesh>;
+// A flat disk, one-sided as an emitter: it emits towards `normal` (stage 4 on).
+struct Disk {
+  Vec3 center;
+  Vec3 normal;  // unit length
+  float radius;
+};
+
+using Geometry = std::variant<Sphere, Plane, Torus, Triangle, Quad, Mesh, Disk>;
 
 struct Shape {
   std::string name;  // optional, for messages

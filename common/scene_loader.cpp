@@ -177,8 +177,26 @@ Material parse_material(const Node& n, const std::string& name) {
     n.expect_object({"type", "ior", "emission"});
     m.type = MaterialType::dielectric;
     if (n.has("ior")) m.ior = n["ior"].as_float(1.0f, 10.0f, "index of refraction");
+  } else if (type == "phong") {
+    n.expect_object({"type", "albedo", "specular", "shininess", "emission"});
+    m.type = MaterialType::phong;
+    m.specular = Color(0.2f);
+    if (n.has("albedo")) m.albedo = n["albedo"].as_color(1.0f, "albedo (more than 1 creates energy)");
+    if (n.has("specular")) m.specular = n["specular"].as_color(1.0f, "specular reflectance");
+    if (n.has("shininess")) m.shininess = n["shininess"].as_float(0.0f, 1e6f, "shininess");
+    // Lambert reflects at most rho_d and the normalized lobe at most rho_s, so their sum must not
+    // exceed 1 (Lafortune & Willems 1994).
+    if (max_component(m.albedo + m.specular) > 1.0f)
+      n.fail("albedo + specular exceeds 1 in some channel: the surface would reflect more than it receives");
+  } else if (type == "microfacet") {
+    n.expect_object({"type", "specular", "roughness", "emission"});
+    m.type = MaterialType::microfacet;
+    m.specular = Color(0.95f, 0.64f, 0.54f);  // copper's normal-incidence reflectance
+    if (n.has("specular")) m.specular = n["specular"].as_color(1.0f, "normal-incidence reflectance F0");
+    if (n.has("roughness")) m.roughness = n["roughness"].as_float(0.001f, 1.0f, "roughness (GGX alpha)");
   } else {
-    n["type"].fail("unknown material type '" + type + "' (known: diffuse, mirror, dielectric)");
+    n["type"].fail("unknown material type '" + type +
+                   "' (known: diffuse, mirror, dielectric, phong, microfacet)");
   }
   if (n.has("emission")) m.emission = n["emission"].as_color(3.0e38f, "emission");
   return m;
@@ -258,7 +276,11 @@ Geometry parse_geometry(const Node& n, const std::string& type, MeshCache& meshe
     n.expect_object({"type", "name", "material", "file", "transform"});
     return meshes.load(n);
   }
-  n["type"].fail("unknown shape type '" + type + "' (known: sphere, plane, torus, triangle, quad, mesh)");
+  if (type == "disk") {
+    n.expect_object({"type", "name", "material", "center", "normal", "radius"});
+    return Disk{n["center"].as_vec3(), n["normal"].as_unit_vector(), n["radius"].as_positive("radius")};
+  }
+  n["type"].fail("unknown shape type '" + type + "' (known: sphere, plane, torus, triangle, quad, mesh, disk)");
 }
 
 PointLight parse_light(const Node& n) {

@@ -23,13 +23,13 @@ RayCastingScene::RayCastingScene(const SceneDescription& description)
     else
       throw InputError(description.source + ": /shapes/" + std::to_string(i) +
                        ": stage 1 renders spheres, planes and tori only (triangles, quads and "
-                       "meshes come with stage 2)");
+                       "meshes come with stage 2, disks with stage 4)");
   }
   for (const Material& material : materials_)
     if (material.type != MaterialType::diffuse)
       throw InputError(description.source + ": /materials/" + material.name +
                        ": stage 1 shades diffuse materials only (mirror and dielectric come with "
-                       "stage 2)");
+                       "stage 2, phong and microfacet with stage 4)");
 }
 
 std::optional<Hit> RayCastingScene::closest_hit(const Ray& ray, Interval range) const {

@@ -41,4 +41,11 @@ TriangleMesh mesh_from_quad(const Quad& quad) {
   return mesh;
 }
 
+std::optional<TriangleMesh> triangles_of(const Geometry& geometry) {
+  if (const auto* triangle = std::get_if<Triangle>(&geometry)) return mesh_from_triangle(*triangle);
+  if (const auto* quad = std::get_if<Quad>(&geometry)) return mesh_from_quad(*quad);
+  if (const auto* mesh = std::get_if<Mesh>(&geometry)) return place_mesh(*mesh->mesh, mesh->transform);
+  return std::nullopt;
+}
+
 }  // namespace rt

@@ -6,6 +6,8 @@
 
 #include <glm/mat3x3.hpp>
 
+#include <optional>
+
 namespace rt {
 
 // Task stage2.mesh.normal_matrix. Normals do not transform like positions. A normal n must stay
@@ -23,5 +25,8 @@ TriangleMesh place_mesh(const TriangleMesh& mesh, const Transform& transform);
 // parallelogram, and the definition of the surface when the four corners are not coplanar.
 TriangleMesh mesh_from_triangle(const Triangle& triangle);
 TriangleMesh mesh_from_quad(const Quad& quad);
+
+// The world-space triangles of a triangle, quad or mesh shape; nothing for other shapes.
+std::optional<TriangleMesh> triangles_of(const Geometry& geometry);
 
 }  // namespace rt

@@ -1,6 +1,7 @@
 #include "02-whitted/whitted.h"
 
 #include "01-ray-casting/local_shading.h"
+#include "common/error.h"
 #include "common/task.h"
 
 namespace rt {
@@ -86,6 +87,14 @@ Color trace_dielectric(const WhittedScene& scene, const Ray& ray, const Hit& hit
 
 }  // namespace
 
+void require_whitted_materials(const SceneDescription& description) {
+  for (const Material& material : description.materials)
+    if (material.type == MaterialType::phong || material.type == MaterialType::microfacet)
+      throw InputError(description.source + ": /materials/" + material.name +
+                       ": stage 2 renders diffuse, mirror and dielectric materials (phong and "
+                       "microfacet come with stage 4)");
+}
+
 Color whitted_radiance(const WhittedScene& scene, const Ray& ray, const WhittedOptions& options, int depth,
                        float weight) {
   const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
@@ -101,6 +110,9 @@ Color whitted_radiance(const WhittedScene& scene, const Ray& ray, const WhittedO
     case MaterialType::dielectric:
       if (depth >= options.max_depth) return emitted;
       return emitted + trace_dielectric(scene, ray, *hit, material, options, depth, weight);
+    case MaterialType::phong:
+    case MaterialType::microfacet:
+      break;  // refused by require_whitted_materials
   }
   return emitted;
 }

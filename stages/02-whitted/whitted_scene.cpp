@@ -19,21 +19,16 @@ WhittedScene::WhittedScene(const SceneDescription& description, TriangleMethod t
   for (size_t i = 0; i < description.shapes.size(); ++i) {
     const Shape& shape = description.shapes[i];
     const int index = int(i);
-    auto add_mesh = [&](TriangleMesh mesh) { primitives_->meshes.push_back({std::move(mesh), shape.material, index}); };
     if (const auto* sphere = std::get_if<Sphere>(&shape.geometry))
       primitives_->spheres.push_back({*sphere, shape.material, index});
     else if (const auto* plane = std::get_if<Plane>(&shape.geometry))
       planes_.push_back({*plane, shape.material, index});
-    else if (const auto* triangle = std::get_if<Triangle>(&shape.geometry))
-      add_mesh(mesh_from_triangle(*triangle));
-    else if (const auto* quad = std::get_if<Quad>(&shape.geometry))
-      add_mesh(mesh_from_quad(*quad));
-    else if (const auto* mesh = std::get_if<Mesh>(&shape.geometry))
-      add_mesh(place_mesh(*mesh->mesh, mesh->transform));
+    else if (std::optional<TriangleMesh> mesh = triangles_of(shape.geometry))
+      primitives_->meshes.push_back({std::move(*mesh), shape.material, index});
     else
       throw InputError(description.source + ": /shapes/" + std::to_string(i) +
                        ": stage 2 renders spheres, planes, triangles, quads and meshes (tori are "
-                       "stage 1's implicit surfaces)");
+                       "stage 1's implicit surfaces, disks come with stage 4)");
   }
   aggregate_ = make_aggregate(primitives_);
 }

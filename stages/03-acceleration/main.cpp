@@ -54,6 +54,7 @@ int main(int argc, char** argv) {
       [&] {
         const DebugView view = debug_view_from_name(debug_name);
         const SceneDescription description = load_scene(options.scene);
+        require_whitted_materials(description);
         const RenderSettings settings = options.settings_for(description);
         BvhBuildOptions build;
         build.max_leaf_size = leaf_size;

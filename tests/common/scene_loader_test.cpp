@@ -209,6 +209,12 @@ INSTANTIATE_TEST_SUITE_P(
                     "/materials/m/reflectance/2: reflectance (more than 1 creates energy) must be in [0, 1], got 1.2"},
         BrokenScene{"checker of size zero", "{" + kCamera + R"(, "materials": {"m": {"checker": {"albedo": [1,1,1], "size": 0}}}, "shapes": []})",
                     "/materials/m/checker/size: checker size must be positive, got 0"},
+        BrokenScene{"phong reflecting more than it gets", "{" + kCamera + R"(, "materials": {"m": {"type": "phong", "albedo": [0.7,0.7,0.7], "specular": [0.2,0.4,0.2]}}, "shapes": []})",
+                    "/materials/m: albedo + specular exceeds 1 in some channel"},
+        BrokenScene{"microfacet without roughness", "{" + kCamera + R"(, "materials": {"m": {"type": "microfacet", "roughness": 0}}, "shapes": []})",
+                    "/materials/m/roughness: roughness (GGX alpha) must be in [0.001, 1], got 0"},
+        BrokenScene{"disk of radius zero", scene_with_shape(R"({"type": "disk", "center": [0,0,0], "normal": [0,1,0], "radius": 0, "material": "m"})"),
+                    "/shapes/0/radius: radius must be positive, got 0"},
         BrokenScene{"mesh without a file", scene_with_shape(R"({"type": "mesh", "material": "m"})"), "/shapes/0: missing field 'file'"},
         BrokenScene{"negative intensity", "{" + kCamera + ", " + kMaterials + R"(, "shapes": [], "lights": [{"type": "point", "position": [0,0,0], "intensity": [1,-1,1]}]})",
                     "/lights/0/intensity/1: intensity must be in [0"}),
@@ -227,7 +233,11 @@ TEST(SceneLoader, MaterialTypesAndTheirDefaults) {
           "silver": {"type": "mirror"},
           "tinted": {"type": "mirror", "reflectance": [0.9, 0.8, 0.7]},
           "glass": {"type": "dielectric"},
-          "diamond": {"type": "dielectric", "ior": 2.42}}, "shapes": []})",
+          "diamond": {"type": "dielectric", "ior": 2.42},
+          "plastic": {"type": "phong", "albedo": [0.3, 0.3, 0.3], "shininess": 50},
+          "copper": {"type": "microfacet"},
+          "steel": {"type": "microfacet", "specular": [0.6, 0.6, 0.6], "roughness": 0.05}},
+        "shapes": [{"type": "disk", "center": [0, 2, 0], "normal": [0, -3, 0], "radius": 0.5, "material": "plain"}]})",
       "materials.json");
   auto material = [&](const std::string& name) {
     for (const Material& m : scene.materials)
@@ -245,6 +255,16 @@ TEST(SceneLoader, MaterialTypesAndTheirDefaults) {
   EXPECT_EQ(material("glass").type, MaterialType::dielectric);
   EXPECT_EQ(material("glass").ior, 1.5f);
   EXPECT_EQ(material("diamond").ior, 2.42f);
+  EXPECT_EQ(material("plastic").type, MaterialType::phong);
+  EXPECT_EQ(material("plastic").specular, Color(0.2f));
+  EXPECT_EQ(material("plastic").shininess, 50.0f);
+  EXPECT_EQ(material("copper").type, MaterialType::microfacet);
+  EXPECT_EQ(material("copper").roughness, 0.2f);
+  EXPECT_EQ(material("steel").specular, Color(0.6f));
+  EXPECT_EQ(material("steel").roughness, 0.05f);
+  const auto& disk = std::get<Disk>(scene.shapes.at(0).geometry);
+  EXPECT_EQ(disk.normal, Vec3(0, -1, 0));
+  EXPECT_EQ(disk.radius, 0.5f);
 }
 
 TEST(SceneLoader, PointLightCornellBoxHasTheCanonicalGeometry) {

@@ -61,6 +61,11 @@ TEST(Stage2Cli, BadInputIsOneLineNamingTheFile) {
                                         (dir / "o.png").string()), dir);
   expect_one_line_error(torus, 1, "/shapes/4: stage 2 renders spheres, planes, triangles, quads and meshes");
 
+  write_text(dir / "glossy.json", R"({"camera": {"position": [0,0,-5], "look_at": [0,0,0], "vfov": 40},
+    "materials": {"plastic": {"type": "phong"}}, "shapes": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "plastic"}]})");
+  const auto glossy = run_command(stage2("--scene " + (dir / "glossy.json").string() + " --out " + (dir / "o.png").string()), dir);
+  expect_one_line_error(glossy, 1, "glossy.json: /materials/plastic: stage 2 renders diffuse, mirror and dielectric materials");
+
   const auto usage = run_command(stage2("--scene " + kWhitted + " --offset sometimes --out " + (dir / "o.png").string()), dir);
   EXPECT_EQ(usage.exit_code, 2) << usage.err;
   const auto depth = run_command(stage2("--scene " + kWhitted + " --max-depth -1 --out " + (dir / "o.png").string()), dir);
