@@ -6,10 +6,19 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 cmake --preset release >/dev/null
-cmake --build --preset release --target sphere_precision offset_vs_scale triangle_leaks stage2_pictures accel_scaling
+cmake --build --preset release --target sphere_precision offset_vs_scale triangle_leaks stage2_pictures accel_scaling \
+  direct_error_vs_time stage4
 build/release/bin/sphere_precision docs/charts/stage1-sphere-precision.csv
 build/release/bin/offset_vs_scale docs/charts/stage2-offset-vs-scale.csv
 build/release/bin/triangle_leaks docs/charts/stage2-triangle-leaks.csv  # the table in docs/stage2.md
 build/release/bin/stage2_pictures "$root"   # docs/images/stage2-acne.png, stage2-cracks.png
 build/release/bin/accel_scaling docs/charts/stage3-accel.csv  # about 20 s; prints the ratios of docs/stage3.md
+build/release/bin/direct_error_vs_time docs/charts/stage4-direct.csv  # about 90 s
+mkdir -p build/stage4-renders  # the four renders tiled into docs/images/stage4-estimators.png
+for light in small large; do
+  for estimator in light brdf; do
+    build/release/bin/stage4 --scene "assets/scenes/direct-$light-light.json" --spp 64 --estimator "$estimator" \
+      --out "build/stage4-renders/$light-$estimator.png" >/dev/null
+  done
+done
 /usr/bin/python3 tools/plot_charts.py "$root"

@@ -121,12 +121,54 @@ def accel_build_vs_trace(charts):
     plt.close(fig)
 
 
+ESTIMATOR_STYLE = {"uniform": ("v-", "tab:gray"), "cosine": ("s-", "tab:olive"), "brdf": ("^-", "tab:blue"),
+                   "light": ("o-", "tab:red")}
+
+
+def direct_error_vs_time(charts):
+    rows = read_rows(charts / "stage4-direct.csv")
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    fig, axes = plt.subplots(1, len(scenes), figsize=(10, 4.4), sharey=True)
+    for ax, scene in zip(axes, scenes):
+        for estimator, (style, colour) in ESTIMATOR_STYLE.items():
+            mine = [r for r in rows if r["scene"] == scene and r["estimator"] == estimator]
+            ax.loglog([float(r["seconds"]) for r in mine], [float(r["rmse"]) for r in mine], style, color=colour,
+                      label=estimator, ms=4)
+        ax.set(xlabel="render time (s), 1 to 256 spp", title=f"{scene}")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].set_ylabel("RMSE against the converged reference")
+    axes[0].legend(fontsize=8)
+    fig.suptitle("Stage 4: direct lighting, error against time for four estimators")
+    fig.tight_layout()
+    fig.savefig(charts / "stage4-direct-error-vs-time.png", dpi=110)
+    plt.close(fig)
+
+
+def estimator_pictures(root, renders):
+    """Tiles the four stage-4 renders (small/large light by light/BRDF sampling) into one picture."""
+    names = [["small-light", "small-brdf"], ["large-light", "large-brdf"]]
+    first = plt.imread(renders / "small-light.png")
+    height, width = first.shape[:2]
+    fig = plt.figure(figsize=(2 * width / 100, 2 * height / 100), dpi=100)
+    for row, pair in enumerate(names):
+        for col, name in enumerate(pair):
+            ax = fig.add_axes([col / 2, 1 - (row + 1) / 2, 0.5, 0.5])
+            ax.imshow(plt.imread(renders / f"{name}.png"), interpolation="nearest")
+            ax.set_axis_off()
+    fig.savefig(root / "docs" / "images" / "stage4-estimators.png", dpi=100)
+    plt.close(fig)
+
+
 def main(root):
     charts = pathlib.Path(root) / "docs" / "charts"
     sphere_precision(charts)
     offset_vs_scale(charts)
     accel_time_per_ray(charts)
     accel_build_vs_trace(charts)
+    direct_error_vs_time(charts)
+    renders = pathlib.Path(root) / "build" / "stage4-renders"
+    if renders.exists():
+        estimator_pictures(pathlib.Path(root), renders)
     print(f"charts written to {charts}")
 
 

@@ -1,0 +1,132 @@
+#include "04-radiometry/direct_lighting.h"
+
+#include "04-radiometry/radiometry.h"
+#include "04-radiometry/warp.h"
+#include "common/task.h"
+
+namespace rt {
+
+ShadingPoint make_shading_point(const LightingScene& scene, const Hit& hit, Vec3 towards_viewer) {
+  const Frame frame = Frame::from_normal(hit.shading_normal);
+  return ShadingPoint{hit, make_brdf(scene.material(hit), hit), frame, frame.to_local(towards_viewer)};
+}
+
+namespace {
+
+// Le arriving at the shading point along the world direction wi: the front-face emission of the
+// first surface a ray in that direction hits, black if it escapes (stage 4 is direct light only).
+[[maybe_unused]] Color emitted_along(const LightingScene& scene, const ShadingPoint& at, Vec3 wi, const OffsetPolicy& offset) {
+  const std::optional<Hit> hit = scene.closest_hit(spawn_ray(at.hit, wi, offset), Interval::positive());
+  return hit ? scene.emitted(*hit) : Color(0.0f);
+}
+
+}  // namespace
+
+Color direct_from_point_lights(const LightingScene& scene, const ShadingPoint& at, const OffsetPolicy& offset) {
+  // BEGIN TASK stage4.direct.point_lights
+  Color sum(0.0f);
+  for (const PointLight& light : scene.point_lights()) {
+    const Vec3 to_light = light.position - at.hit.point;
+    const float distance = glm::length(to_light);
+    if (!(distance > 0.0f)) continue;
+    const Vec3 wi = at.frame.to_local(to_light / distance);
+    const Color f = at.brdf.eval(wi, at.wo);
+    if (f == Color(0.0f)) continue;
+    const ShadowRay shadow = spawn_shadow_ray(at.hit, light.position, offset);
+    if (scene.occluded(shadow.ray, shadow.range)) continue;
+    sum += f * point_light_irradiance(light.intensity, distance, wi.z);
+  }
+  return sum;
+  // PLACEHOLDER
+  // report_unfinished_task("stage4.direct.point_lights");
+  // (void)scene, (void)at, (void)offset;
+  // return Color(0.0f);
+  // END TASK
+}
+
+Color direct_by_hemisphere(const LightingScene& scene, const ShadingPoint& at, bool cosine, Rng& rng,
+                           const OffsetPolicy& offset) {
+  // BEGIN TASK stage4.direct.hemisphere
+  const Vec2 u = rng.uniform2();
+  const Vec3 wi = cosine ? sample_cosine_hemisphere(u) : sample_uniform_hemisphere(u);
+  const float pdf = cosine ? cosine_hemisphere_pdf(wi) : uniform_hemisphere_pdf(wi);
+  const Color f = at.brdf.eval(wi, at.wo);
+  if (!(pdf > 0.0f) || f == Color(0.0f)) return Color(0.0f);
+  return f * emitted_along(scene, at, at.frame.to_world(wi), offset) * (wi.z / pdf);
+  // PLACEHOLDER
+  // report_unfinished_task("stage4.direct.hemisphere");
+  // (void)scene, (void)at, (void)cosine, (void)rng, (void)offset;
+  // return Color(0.0f);
+  // END TASK
+}
+
+Color direct_by_brdf_sampling(const LightingScene& scene, const ShadingPoint& at, Rng& rng, const OffsetPolicy& offset) {
+  // BEGIN TASK stage4.direct.brdf_sampling
+  const Vec2 u = rng.uniform2();
+  const std::optional<BrdfSample> s = at.brdf.sample(at.wo, u, rng.uniform());
+  if (!s) return Color(0.0f);
+  return s->weight * emitted_along(scene, at, at.frame.to_world(s->wi), offset);
+  // PLACEHOLDER
+  // report_unfinished_task("stage4.direct.brdf_sampling");
+  // (void)scene, (void)at, (void)rng, (void)offset;
+  // return Color(0.0f);
+  // END TASK
+}
+
+Color direct_by_light_sampling(const LightingScene& scene, const ShadingPoint& at, Rng& rng, const OffsetPolicy& offset) {
+  const float u_choice = rng.uniform();
+  const Vec2 u = rng.uniform2();
+  if (scene.emitter_distribution().empty()) return Color(0.0f);
+  // BEGIN TASK stage4.direct.light_sampling
+  const DiscreteDistribution::Choice choice = scene.emitter_distribution().sample(u_choice);
+  const AreaEmitter& emitter = scene.emitters()[size_t(choice.index)];
+  const EmitterSample s = emitter.sample(at.hit.point, u);
+  if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return Color(0.0f);
+  const Color le = emitter.radiance_towards(s.point, at.hit.point);
+  const Vec3 wi = at.frame.to_local(s.wi);
+  const Color f = at.brdf.eval(wi, at.wo);
+  if (le == Color(0.0f) || f == Color(0.0f)) return Color(0.0f);
+  const ShadowRay shadow = spawn_shadow_ray(at.hit, s.point, offset);
+  if (scene.occluded(shadow.ray, shadow.range)) return Color(0.0f);
+  return f * le * (wi.z / (choice.pmf * s.pdf));
+  // PLACEHOLDER
+  // report_unfinished_task("stage4.direct.light_sampling");
+  // (void)at, (void)offset, (void)u_choice, (void)u;
+  // return Color(0.0f);
+  // END TASK
+}
+
+Color direct_radiance(const LightingScene& scene, const Ray& ray, const DirectOptions& options, Rng& rng, int depth) {
+  const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
+  if (!hit) return scene.background();
+  const Color emitted = scene.emitted(*hit);
+  const ShadingPoint at = make_shading_point(scene, *hit, -ray.direction);
+
+  if (at.brdf.is_delta()) {
+    if (depth >= options.max_depth) return emitted;
+    const Vec2 u = rng.uniform2();
+    const std::optional<BrdfSample> s = at.brdf.sample(at.wo, u, rng.uniform());
+    if (!s) return emitted;
+    const Ray next = spawn_ray(*hit, at.frame.to_world(s->wi), options.offset);
+    return emitted + s->weight * direct_radiance(scene, next, options, rng, depth + 1);
+  }
+
+  Color reflected = direct_from_point_lights(scene, at, options.offset);
+  switch (options.estimator) {
+    case DirectEstimator::uniform_hemisphere:
+      reflected += direct_by_hemisphere(scene, at, false, rng, options.offset);
+      break;
+    case DirectEstimator::cosine_hemisphere:
+      reflected += direct_by_hemisphere(scene, at, true, rng, options.offset);
+      break;
+    case DirectEstimator::brdf:
+      reflected += direct_by_brdf_sampling(scene, at, rng, options.offset);
+      break;
+    case DirectEstimator::light:
+      reflected += direct_by_light_sampling(scene, at, rng, options.offset);
+      break;
+  }
+  return emitted + reflected;
+}
+
+}  // namespace rt

@@ -1,0 +1,41 @@
+// stage4: renders a scene's direct lighting by Monte Carlo integration, with one of four estimators.
+#include "01-ray-casting/program.h"
+#include "04-radiometry/direct_lighting.h"
+
+#include <map>
+
+int main(int argc, char** argv) {
+  using namespace rt;
+  CommonOptions options;
+  DirectOptions direct;
+  LightingOptions lighting;
+
+  return run_stage_program(
+      argc, argv, "stage4", "Stage 4: direct lighting by Monte Carlo integration of the reflection equation", options,
+      [&](CLI::App& app) {
+        add_max_depth_flag(app, options);
+        app.add_option("--estimator", direct.estimator,
+                       "How directions are chosen: uniform (hemisphere), cosine (hemisphere), brdf, or light "
+                       "(emitter sampling, the default)")
+            ->transform(CLI::CheckedTransformer(std::map<std::string, DirectEstimator>{
+                {"uniform", DirectEstimator::uniform_hemisphere},
+                {"cosine", DirectEstimator::cosine_hemisphere},
+                {"brdf", DirectEstimator::brdf},
+                {"light", DirectEstimator::light}}));
+        app.add_option("--sphere-sampling", lighting.sphere_sampling,
+                       "How sphere lights are sampled: cone (the directions they subtend, default) or area")
+            ->transform(CLI::CheckedTransformer(std::map<std::string, SphereSampling>{
+                {"cone", SphereSampling::cone}, {"area", SphereSampling::area}}));
+      },
+      [&] {
+        const SceneDescription description = load_scene(options.scene);
+        const RenderSettings settings = options.settings_for(description);
+        direct.max_depth = settings.max_depth;
+        const LightingScene scene(description, lighting);
+        std::printf("stage4: %zu area emitters, %zu point lights\n", scene.emitters().size(),
+                    scene.point_lights().size());
+        const PinholeCamera camera(description.camera, settings.width, settings.height);
+        render_and_write("stage4", options, settings, camera, DebugView::none,
+                         [&](const Ray& ray, Rng& rng) { return direct_radiance(scene, ray, direct, rng); });
+      });
+}

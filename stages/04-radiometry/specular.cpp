@@ -1,0 +1,23 @@
+#include "04-radiometry/specular.h"
+
+#include "02-whitted/optics.h"
+
+namespace rt {
+
+std::optional<BrdfSample> MirrorBrdf::sample(Vec3 wo, Vec2, float) const {
+  if (wo.z <= 0.0f) return std::nullopt;
+  return BrdfSample{Vec3(-wo.x, -wo.y, wo.z), reflectance, 1.0f, true};
+}
+
+std::optional<BrdfSample> DielectricBsdf::sample(Vec3 wo, Vec2, float u_lobe) const {
+  if (wo.z <= 0.0f) return std::nullopt;
+  const Vec3 normal(0.0f, 0.0f, 1.0f);
+  const float f = fresnel_dielectric(wo.z, eta_outside, eta_inside);
+  if (u_lobe < f) return BrdfSample{Vec3(-wo.x, -wo.y, wo.z), Color(1.0f), f, true};
+  const std::optional<Vec3> wt = refract(-wo, normal, eta_outside, eta_inside);
+  if (!wt) return BrdfSample{Vec3(-wo.x, -wo.y, wo.z), Color(1.0f), 1.0f, true};  // total internal reflection
+  const float scale = eta_outside / eta_inside;
+  return BrdfSample{*wt, Color(scale * scale), 1.0f - f, true};
+}
+
+}  // namespace rt

@@ -1,0 +1,180 @@
+// Stage 4: Monte Carlo direct lighting against closed forms. A Lambertian floor of albedo rho under
+// an emitter of radiance L, seen at a point p straight below the emitter's centre, sends back
+// L_r = rho E / pi with E = pi L F (closed_form.h); every estimator must find that value within its
+// confidence interval, and with a small enough interval that the test means something.
+#include "04-radiometry/direct_lighting.h"
+#include "closed_form.h"
+
+#include <gtest/gtest.h>
+
+namespace rt {
+namespace {
+
+constexpr float kAlbedo = 0.5f;
+const Vec3 kAbove(1.5f, 1.2f, 0.0f);  // a viewpoint whose mirror direction off the floor rises at 39 degrees
+
+const DirectEstimator kEstimators[] = {DirectEstimator::uniform_hemisphere, DirectEstimator::cosine_hemisphere,
+                                       DirectEstimator::brdf, DirectEstimator::light};
+const char* name(DirectEstimator e) {
+  switch (e) {
+    case DirectEstimator::uniform_hemisphere: return "uniform";
+    case DirectEstimator::cosine_hemisphere: return "cosine";
+    case DirectEstimator::brdf: return "brdf";
+    case DirectEstimator::light: return "light";
+  }
+  return "?";
+}
+
+// A 20 x 20 floor at y = 0 with material `floor`, plus the given shapes and lights.
+LightingScene floor_scene(const std::string& floor_material, const std::string& emitters, const std::string& lights = "[]") {
+  const std::string json = R"({"camera": {"position": [3, 0.2, 0], "look_at": [0, 0, 0], "vfov": 40},
+    "materials": {"floor": )" + floor_material + R"(, "light": {"emission": [4, 4, 4]}},
+    "shapes": [{"type": "quad", "material": "floor", "vertices": [[-10, 0, -10], [-10, 0, 10], [10, 0, 10], [10, 0, -10]]})" +
+                           (emitters.empty() ? "" : ", " + emitters) + R"(],
+    "lights": )" + lights + "}";
+  return LightingScene(parse_scene(json, "closed-form.json"));
+}
+
+struct Estimate {
+  double mean, standard_error;
+};
+
+// The radiance along one fixed ray to the floor point (0, 0, 0), by default from a low position so
+// it passes under every emitter: `samples` independent estimates, their mean and standard error.
+Estimate estimate_at_origin(const LightingScene& scene, DirectEstimator estimator, int samples,
+                            Vec3 origin = Vec3(3.0f, 0.2f, 0.0f)) {
+  constexpr std::uint64_t seed = 1;
+  const Ray ray{origin, glm::normalize(-origin)};
+  DirectOptions options;
+  options.estimator = estimator;
+  double sum = 0.0, sum2 = 0.0;
+  for (int k = 0; k < samples; ++k) {
+    Rng rng(seed, 0, std::uint64_t(k));
+    const double v = direct_radiance(scene, ray, options, rng).x;
+    sum += v;
+    sum2 += v * v;
+  }
+  const double m = sum / samples;
+  return {m, std::sqrt(std::max(0.0, sum2 / samples - m * m) / samples)};
+}
+
+void expect_every_estimator_finds(const LightingScene& scene, double exact, int samples) {
+  for (const DirectEstimator e : kEstimators) {
+    const Estimate est = estimate_at_origin(scene, e, samples);
+    EXPECT_NEAR(est.mean, exact, 4.0 * est.standard_error + 1e-5 * exact) << name(e);
+    EXPECT_LT(est.standard_error, 0.02 * exact) << name(e) << ": too noisy to mean anything";
+  }
+}
+
+TEST(DirectClosedForm, PointLightInverseSquareAndCosineLaw) {
+  // I = 8 at height 2 straight above, and I = 4 at distance 2 and 60 degrees off the normal:
+  // E = 8 / 4 + 4 cos(60) / 4 = 2.5, L_r = rho E / pi. Deterministic for every estimator.
+  const float s = std::sin(radians(60.0f)) * 2.0f, c = std::cos(radians(60.0f)) * 2.0f;
+  const LightingScene scene = floor_scene(R"({"albedo": [0.5, 0.5, 0.5]})", "",
+                                          R"([{"type": "point", "position": [0, 2, 0], "intensity": [8, 8, 8]},
+                                              {"type": "point", "position": [0, )" + std::to_string(c) + ", " +
+                                              std::to_string(s) + R"(], "intensity": [4, 4, 4]}])");
+  const double exact = kAlbedo * 2.5 / kPi;
+  for (const DirectEstimator e : kEstimators) {
+    const Estimate est = estimate_at_origin(scene, e, 16);
+    EXPECT_NEAR(est.mean, exact, 1e-5 * exact) << name(e);
+    EXPECT_LT(est.standard_error, 1e-6) << name(e);
+  }
+}
+
+TEST(DirectClosedForm, SquareEmitter) {
+  // A 1 x 1 square at height 1, centred above p, facing down: L_r = rho L F.
+  const LightingScene scene = floor_scene(R"({"albedo": [0.5, 0.5, 0.5]})",
+                                          R"({"type": "quad", "material": "light",
+      "vertices": [[-0.5, 1, -0.5], [0.5, 1, -0.5], [0.5, 1, 0.5], [-0.5, 1, 0.5]]})");
+  expect_every_estimator_finds(scene, kAlbedo * 4.0 * testing::factor_to_centred_square(1.0, 1.0), 40000);
+}
+
+TEST(DirectClosedForm, CoaxialDiskEmitter) {
+  const LightingScene scene = floor_scene(R"({"albedo": [0.5, 0.5, 0.5]})",
+                                          R"({"type": "disk", "material": "light", "center": [0, 1, 0],
+      "normal": [0, -1, 0], "radius": 0.5})");
+  expect_every_estimator_finds(scene, kAlbedo * 4.0 * testing::factor_to_coaxial_disk(0.5, 1.0), 40000);
+}
+
+TEST(DirectClosedForm, SphereEmitter) {
+  const LightingScene scene = floor_scene(R"({"albedo": [0.5, 0.5, 0.5]})",
+                                          R"({"type": "sphere", "material": "light", "center": [0, 1.5, 0], "radius": 0.6})");
+  expect_every_estimator_finds(scene, kAlbedo * 4.0 * testing::factor_to_sphere_on_normal(0.6, 1.5), 40000);
+}
+
+TEST(DirectClosedForm, OneSidedEmitterLightsNothingBehindIt) {
+  // The square faces up, away from the floor: no estimator sees any of its light.
+  const LightingScene scene = floor_scene(R"({"albedo": [0.5, 0.5, 0.5]})",
+                                          R"({"type": "quad", "material": "light",
+      "vertices": [[-0.5, 1, -0.5], [-0.5, 1, 0.5], [0.5, 1, 0.5], [0.5, 1, -0.5]]})");
+  for (const DirectEstimator e : kEstimators) EXPECT_EQ(estimate_at_origin(scene, e, 1000).mean, 0.0) << name(e);
+}
+
+TEST(DirectEstimators, AgreeOnGlossySurfaces) {
+  // No closed form, but all four estimate the same integral: their means agree within error.
+  for (const char* floor : {R"({"type": "phong", "albedo": [0.2, 0.2, 0.2], "specular": [0.7, 0.7, 0.7], "shininess": 20})",
+                            R"({"type": "microfacet", "specular": [0.9, 0.9, 0.9], "roughness": 0.3})"}) {
+    const LightingScene scene = floor_scene(floor, R"({"type": "quad", "material": "light",
+      "vertices": [[-2.5, 1.5, -0.5], [-1.5, 1.5, -0.5], [-1.5, 1.5, 0.5], [-2.5, 1.5, 0.5]]})");
+    std::vector<Estimate> estimates;
+    // Seen from above, so the mirror direction of the view points into the light.
+    for (const DirectEstimator e : kEstimators) estimates.push_back(estimate_at_origin(scene, e, 60000, kAbove));
+    EXPECT_GT(estimates.back().mean, 0.05) << floor;  // the highlight is in view
+    for (size_t i = 0; i < estimates.size(); ++i)
+      for (size_t j = i + 1; j < estimates.size(); ++j) {
+        const double se = std::hypot(estimates[i].standard_error, estimates[j].standard_error);
+        EXPECT_NEAR(estimates[i].mean, estimates[j].mean, 4.0 * se) << floor << ": " << name(kEstimators[i]) << " vs "
+                                                                  << name(kEstimators[j]);
+      }
+  }
+}
+
+TEST(DirectEstimators, LightSamplingWinsForSmallLightsBrdfSamplingForSharpLobes) {
+  // A small light over a diffuse floor: light sampling has far less variance.
+  const LightingScene small = floor_scene(R"({"albedo": [0.5, 0.5, 0.5]})", R"({"type": "disk", "material": "light",
+      "center": [0, 1, 0], "normal": [0, -1, 0], "radius": 0.05})");
+  const Estimate by_light = estimate_at_origin(small, DirectEstimator::light, 4000);
+  const Estimate by_cosine = estimate_at_origin(small, DirectEstimator::cosine_hemisphere, 4000);
+  EXPECT_LT(by_light.standard_error * 10.0, by_cosine.standard_error);
+  // A large light seen in a sharp glossy lobe: BRDF sampling has less variance.
+  const LightingScene glossy = floor_scene(R"({"type": "phong", "albedo": [0, 0, 0], "specular": [0.9, 0.9, 0.9], "shininess": 2000})",
+                                           R"({"type": "quad", "material": "light",
+      "vertices": [[-20, 3, -10], [0, 3, -10], [0, 3, 10], [-20, 3, 10]]})");
+  const Estimate glossy_light = estimate_at_origin(glossy, DirectEstimator::light, 4000, kAbove);
+  const Estimate glossy_brdf = estimate_at_origin(glossy, DirectEstimator::brdf, 4000, kAbove);
+  EXPECT_LT(glossy_brdf.standard_error * 3.0, glossy_light.standard_error);
+}
+
+TEST(DirectDelta, EveryEstimatorSeesALightInAMirror) {
+  // A mirror floor reflects the ray up into a disk emitter of radiance 4: 0.8 x 4, exactly.
+  const LightingScene scene = floor_scene(R"({"type": "mirror", "reflectance": [0.8, 0.8, 0.8]})",
+                                          R"({"type": "disk", "material": "light", "center": [-3, 0.2, 0],
+      "normal": [1, 0, 0], "radius": 0.5})");
+  for (const DirectEstimator e : kEstimators) {
+    const Estimate est = estimate_at_origin(scene, e, 8);
+    EXPECT_NEAR(est.mean, 3.2, 1e-5) << name(e);
+  }
+}
+
+TEST(DirectRobustness, GrazingAndCornerRaysStayFinite) {
+  const LightingScene scene = floor_scene(R"({"type": "microfacet", "specular": [0.9, 0.9, 0.9], "roughness": 0.01})",
+                                          R"({"type": "sphere", "material": "light", "center": [0, 0.5, 0], "radius": 0.5},
+      {"type": "quad", "material": "light", "vertices": [[-1, 1e-4, -1], [1, 1e-4, -1], [1, 1e-4, 1], [-1, 1e-4, 1]]})");
+  DirectOptions options;
+  Rng rng(3, 0, 0);
+  for (const DirectEstimator e : kEstimators) {
+    options.estimator = e;
+    for (int k = 0; k < 20000; ++k) {
+      // Rays from all around, many nearly parallel to the floor or aimed at the sphere's contact.
+      const Vec3 origin = Vec3(4.0f, 0.0f, 0.0f) * (1.0f + rng.uniform()) + Vec3(0.0f, 1e-3f * rng.uniform(), 0.0f);
+      const Vec3 target(rng.uniform() - 0.5f, 0.0f, rng.uniform() - 0.5f);
+      const Color l = direct_radiance(scene, Ray{origin, glm::normalize(target - origin)}, options, rng);
+      ASSERT_TRUE(is_finite(l)) << name(e);
+      ASSERT_GE(min_component(l), 0.0f) << name(e);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rt
