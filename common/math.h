@@ -23,6 +23,9 @@ inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 inline float max_component(Vec3 v) { return std::max({v.x, v.y, v.z}); }
 inline float min_component(Vec3 v) { return std::min({v.x, v.y, v.z}); }
+// v[axis] for an axis known only at run time. GLM's operator[] is a switch (a jump per call);
+// two selects let the compiler use conditional moves instead.
+inline float component(Vec3 v, int axis) { return axis == 0 ? v.x : (axis == 1 ? v.y : v.z); }
 
 inline bool is_finite(Vec3 v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);

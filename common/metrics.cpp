@@ -44,4 +44,16 @@ DVec3 mean_over(const Image& image, PixelRect r) {
   return sum / double((r.x1 - r.x0) * (r.y1 - r.y0));
 }
 
+Image downsample(const Image& image, int factor) {
+  if (factor < 1 || image.width() % factor != 0 || image.height() % factor != 0)
+    throw std::invalid_argument("downsample: the factor must divide the image's width and height");
+  Image small(image.width() / factor, image.height() / factor);
+  for (int y = 0; y < small.height(); ++y)
+    for (int x = 0; x < small.width(); ++x) {
+      const DVec3 mean = mean_over(image, {x * factor, y * factor, (x + 1) * factor, (y + 1) * factor});
+      small.at(x, y) = Color(mean);
+    }
+  return small;
+}
+
 }  // namespace rt

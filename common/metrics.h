@@ -22,4 +22,10 @@ double relative_mse(const Image& image, const Image& reference, double epsilon =
 // Mean colour over a rectangle (e.g. a wall of the Cornell box).
 DVec3 mean_over(const Image& image, PixelRect rect);
 
+// Each `factor` x `factor` block averaged into one pixel. With a box pixel filter this is exact
+// for expectations: a pixel of the small image integrates the same footprint as the block it
+// replaces, so a 256 x 256 reference downsampled by 4 is the reference of a 64 x 64 render.
+// Throws std::invalid_argument unless `factor` divides both sides.
+Image downsample(const Image& image, int factor);
+
 }  // namespace rt

@@ -15,7 +15,17 @@
 
 namespace rt {
 
-class Rng {
+// Where an integrator draws its numbers from: independent random numbers (Rng) or a
+// low-discrepancy sequence (stage 5). Two calls, one number or a pair; the pair is one point of a
+// 2D pattern, so a sampler that stratifies in 2D keeps the two coordinates together.
+class Sampler {
+ public:
+  virtual ~Sampler() = default;
+  virtual float uniform() = 0;
+  virtual Vec2 uniform2() = 0;
+};
+
+class Rng final : public Sampler {
  public:
   // Each sample may draw up to this many numbers before it runs into the next sample's.
   static constexpr std::uint64_t kDimensionsPerSample = std::uint64_t(1) << 16;
@@ -29,8 +39,8 @@ class Rng {
 
   // Uniform in [0, 1): the top 24 bits scaled by 2^-24, so the result is exactly representable
   // and never rounds up to 1 (std::uniform_real_distribution<float> can return 1, LWG 2524).
-  float uniform() { return float(engine_() >> 8) * 0x1p-24f; }
-  Vec2 uniform2() {
+  float uniform() override { return float(engine_() >> 8) * 0x1p-24f; }
+  Vec2 uniform2() override {
     const float u = uniform();
     return Vec2(u, uniform());
   }

@@ -7,13 +7,14 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 cmake --preset release >/dev/null
 cmake --build --preset release --target sphere_precision offset_vs_scale triangle_leaks stage2_pictures accel_scaling \
-  direct_error_vs_time stage4
+  direct_error_vs_time path_error_vs_time stage4 stage5
 build/release/bin/sphere_precision docs/charts/stage1-sphere-precision.csv
 build/release/bin/offset_vs_scale docs/charts/stage2-offset-vs-scale.csv
 build/release/bin/triangle_leaks docs/charts/stage2-triangle-leaks.csv  # the table in docs/stage2.md
 build/release/bin/stage2_pictures "$root"   # docs/images/stage2-acne.png, stage2-cracks.png
 build/release/bin/accel_scaling docs/charts/stage3-accel.csv  # about 20 s; prints the ratios of docs/stage3.md
 build/release/bin/direct_error_vs_time docs/charts/stage4-direct.csv  # about 90 s
+build/release/bin/path_error_vs_time docs/charts/stage5-paths.csv  # about 15 minutes
 mkdir -p build/stage4-renders  # the four renders tiled into docs/images/stage4-estimators.png
 for light in small large; do
   for estimator in light brdf; do
@@ -21,4 +22,6 @@ for light in small large; do
       --out "build/stage4-renders/$light-$estimator.png" >/dev/null
   done
 done
+mkdir -p build/stage5-renders  # the README's first render, beside the reference in docs/images/stage5-cornell-box.png
+build/release/bin/stage5 --scene assets/scenes/cornell-box.json --out build/stage5-renders/cornell-box.pfm
 /usr/bin/python3 tools/plot_charts.py "$root"

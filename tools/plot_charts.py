@@ -8,6 +8,8 @@ import csv
 import pathlib
 import sys
 
+import numpy as np
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -77,7 +79,7 @@ def offset_vs_scale(charts):
 
 
 ACCEL_STYLE = {"naive": ("o-", "#7f8c8d"), "median": ("s-", "#c0392b"), "middle": ("^-", "#d68910"),
-               "sah": ("D-", "#2471a3"), "embree": ("x--", "#17a589")}
+               "sah": ("D-", "#2471a3"), "sah-wide": ("P-", "#6c3483"), "embree": ("x--", "#17a589")}
 
 
 def accel_time_per_ray(charts):
@@ -144,6 +146,54 @@ def direct_error_vs_time(charts):
     plt.close(fig)
 
 
+PATH_STYLE = {("naive", "sobol"): ("v-", "tab:grey"),
+              ("rr", "sobol"): ("^-", "tab:purple"),
+              ("nee", "sobol"): ("s-", "tab:blue"),
+              ("mis", "sobol"): ("o-", "tab:red"),
+              ("mis", "independent"): ("o--", "tab:orange")}
+
+
+def path_chart(charts, x, xlabel, title, png, guides):
+    """One stage-5 chart from stage5-paths.csv: RMSE against column `x`, log-log, one line per
+    integrator and sampler; `guides(ax, rows)` draws the chart's own reference lines."""
+    rows = read_rows(charts / "stage5-paths.csv")
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    for (integrator, sampler), (style, colour) in PATH_STYLE.items():
+        mine = [r for r in rows if r["integrator"] == integrator and r["sampler"] == sampler]
+        if mine:
+            ax.loglog([float(r[x]) for r in mine], [float(r["rmse"]) for r in mine], style, color=colour,
+                      label=f"{integrator}, {sampler}", ms=4)
+    guides(ax, rows)
+    ax.set(xlabel=xlabel, ylabel="RMSE against the converged reference", title=title)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(charts / png, dpi=110)
+    plt.close(fig)
+
+
+def path_error_vs_time(charts):
+    def target(ax, rows):
+        ax.axhline(0.005, color="black", lw=0.8, ls=":")
+        ax.axvline(20.0, color="black", lw=0.8, ls=":")
+        ax.text(1.02 * 20.0, 0.3, "20 s", fontsize=8)
+        ax.text(ax.get_xlim()[0] * 1.1, 0.0053, "RMSE 0.005", fontsize=8)
+
+    path_chart(charts, "seconds", "wall time on 2 cores (s), spp doubling from 1",
+               "Stage 5: Cornell box 256 x 256, error against time", "stage5-error-vs-time.png", target)
+
+
+def path_convergence(charts):
+    def inverse_square_root(ax, rows):
+        anchor = [r for r in rows if r["integrator"] == "mis" and r["sampler"] == "independent"][0]
+        spp = [1, 4096]
+        ax.loglog(spp, [float(anchor["rmse"]) * n ** -0.5 for n in spp], color="black", lw=0.8, ls=":",
+                  label="N^-1/2 (through mis, independent at 1 spp)")
+
+    path_chart(charts, "spp", "samples per pixel N", "Stage 5: Cornell box 256 x 256, convergence",
+               "stage5-convergence.png", inverse_square_root)
+
+
 def estimator_pictures(root, renders):
     """Tiles the four stage-4 renders (small/large light by light/BRDF sampling) into one picture."""
     names = [["small-light", "small-brdf"], ["large-light", "large-brdf"]]
@@ -159,6 +209,29 @@ def estimator_pictures(root, renders):
     plt.close(fig)
 
 
+def srgb(linear):
+    """Linear radiance to display values: clamp to [0, 1], then the sRGB curve (IEC 61966-2-1)."""
+    x = np.clip(linear, 0.0, 1.0)
+    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055)
+
+
+def cornell_pictures(root, render):
+    """The README's Cornell box render beside the converged reference, for docs/stage5.md."""
+    sys.path.insert(0, str(pathlib.Path(__file__).parent))
+    from average_pfm import read_pfm  # noqa: E402  (a sibling tool)
+    images = [read_pfm(render)[::-1], read_pfm(root / "assets" / "references" / "cornell-box-256.pfm")[::-1]]
+    titles = ["256 spp, MIS, Sobol (the README's first command)", "reference, 32,768 spp"]
+    height, width = images[0].shape[:2]
+    fig = plt.figure(figsize=(2 * width / 100, (height + 24) / 100), dpi=100)
+    for col, (image, title) in enumerate(zip(images, titles)):
+        ax = fig.add_axes([col / 2, 0, 0.5, height / (height + 24)])
+        ax.imshow(srgb(image), interpolation="nearest")
+        ax.set_axis_off()
+        fig.text(col / 2 + 0.25, 1 - 12 / (height + 24), title, ha="center", va="center", fontsize=7)
+    fig.savefig(root / "docs" / "images" / "stage5-cornell-box.png", dpi=100)
+    plt.close(fig)
+
+
 def main(root):
     charts = pathlib.Path(root) / "docs" / "charts"
     sphere_precision(charts)
@@ -166,9 +239,14 @@ def main(root):
     accel_time_per_ray(charts)
     accel_build_vs_trace(charts)
     direct_error_vs_time(charts)
+    path_error_vs_time(charts)
+    path_convergence(charts)
     renders = pathlib.Path(root) / "build" / "stage4-renders"
     if renders.exists():
         estimator_pictures(pathlib.Path(root), renders)
+    cornell = pathlib.Path(root) / "build" / "stage5-renders" / "cornell-box.pfm"
+    if cornell.exists():
+        cornell_pictures(pathlib.Path(root), cornell)
     print(f"charts written to {charts}")
 
 

@@ -17,14 +17,15 @@ namespace rt {
 // A depth image in scene units is mostly white in a PNG; scale it by the farthest hit.
 void scale_depth_for_png(Image& image);
 
-template <class RadianceFn>
-void render_and_write(const char* program, const CommonOptions& options, const RenderSettings& settings,
-                      const PinholeCamera& camera, DebugView view, RadianceFn&& radiance) {
+// `render(progress)` makes the image, advancing the progress bar by the samples it finishes.
+template <class RenderFn>
+void render_with_progress_and_write(const char* program, const CommonOptions& options,
+                                    const RenderSettings& settings, DebugView view, RenderFn&& render) {
   const auto start = std::chrono::steady_clock::now();
   ProgressBar progress(std::uint64_t(settings.width) * std::uint64_t(settings.height) *
                            std::uint64_t(settings.spp),
                        "samples");
-  Image image = render_image(camera, settings, options.threads, radiance, &progress);
+  Image image = render(&progress);
   progress.finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (view == DebugView::depth && image_format_for(options.out) == ImageFormat::png) scale_depth_for_png(image);
@@ -32,6 +33,14 @@ void render_and_write(const char* program, const CommonOptions& options, const R
   std::printf("%s: wrote %s (%dx%d, %d spp) in %.2f s, %ssamples/s\n", program, options.out.c_str(),
               settings.width, settings.height, settings.spp, seconds,
               format_si(double(image.pixel_count()) * settings.spp / seconds).c_str());
+}
+
+template <class SamplerType = Rng, class RadianceFn>
+void render_and_write(const char* program, const CommonOptions& options, const RenderSettings& settings,
+                      const PinholeCamera& camera, DebugView view, RadianceFn&& radiance) {
+  render_with_progress_and_write(program, options, settings, view, [&](ProgressBar* progress) {
+    return render_image<SamplerType>(camera, settings, options.threads, radiance, progress);
+  });
 }
 
 }  // namespace rt

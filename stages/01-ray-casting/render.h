@@ -18,7 +18,9 @@ namespace rt {
 // `radiance(ray, rng)` returns the radiance arriving along the camera ray, drawing any further
 // random numbers it needs from `rng` (the stream after the pixel offset's two numbers).
 // `progress`, if given, is advanced by the samples of each finished tile.
-template <class RadianceFn>
+// `SamplerType` makes each sample's numbers from (seed, pixel, sample index): Rng (independent
+// random numbers) unless a later stage passes another.
+template <class SamplerType = Rng, class RadianceFn>
 Image render_image(const PinholeCamera& camera, const RenderSettings& settings, int threads,
                    RadianceFn&& radiance, ProgressBar* progress = nullptr) {
   Image image(camera.width, camera.height);
@@ -29,7 +31,7 @@ Image render_image(const PinholeCamera& camera, const RenderSettings& settings, 
         // BEGIN TASK stage1.render.pixel_samples
         Color sum(0.0f);
         for (int k = 0; k < settings.spp; ++k) {
-          Rng rng(settings.seed, pixel_index, std::uint64_t(k));
+          SamplerType rng(settings.seed, pixel_index, std::uint64_t(k));
           const Vec2 offset = settings.pixel_center_only ? Vec2(0.5f) : rng.uniform2();
           const Ray ray = generate_camera_ray(camera, Vec2(float(x), float(y)) + offset);
           sum += radiance(ray, rng);

@@ -42,11 +42,12 @@ WatertightRay::WatertightRay(const Ray& ray) : origin(ray.origin), direction(ray
   kz = abs_d.x > abs_d.y ? (abs_d.x > abs_d.z ? 0 : 2) : (abs_d.y > abs_d.z ? 1 : 2);
   kx = (kz + 1) % 3;
   ky = (kx + 1) % 3;
-  if (ray.direction[kz] < 0.0f) std::swap(kx, ky);
+  if (component(ray.direction, kz) < 0.0f) std::swap(kx, ky);
   // Shear that maps d onto (0, 0, 1): x' = x - (d_x/d_z) z, y' = y - (d_y/d_z) z, z' = z / d_z.
-  shear_x = ray.direction[kx] / ray.direction[kz];
-  shear_y = ray.direction[ky] / ray.direction[kz];
-  shear_z = 1.0f / ray.direction[kz];
+  const float d_kz = component(ray.direction, kz);
+  shear_x = component(ray.direction, kx) / d_kz;
+  shear_y = component(ray.direction, ky) / d_kz;
+  shear_z = 1.0f / d_kz;
   // PLACEHOLDER
   // report_unfinished_task("stage2.triangle.shear");
   // kx = 0, ky = 1, kz = 2;
@@ -60,9 +61,10 @@ std::optional<TriangleHit> intersect_triangle_watertight(const WatertightRay& ra
   const int kx = ray.kx, ky = ray.ky, kz = ray.kz;
   const float shear_x = ray.shear_x, shear_y = ray.shear_y, shear_z = ray.shear_z;
   const Vec3 a = v0 - ray.origin, b = v1 - ray.origin, c = v2 - ray.origin;
-  const float ax = a[kx] - shear_x * a[kz], ay = a[ky] - shear_y * a[kz];
-  const float bx = b[kx] - shear_x * b[kz], by = b[ky] - shear_y * b[kz];
-  const float cx = c[kx] - shear_x * c[kz], cy = c[ky] - shear_y * c[kz];
+  const float a_kz = component(a, kz), b_kz = component(b, kz), c_kz = component(c, kz);
+  const float ax = component(a, kx) - shear_x * a_kz, ay = component(a, ky) - shear_y * a_kz;
+  const float bx = component(b, kx) - shear_x * b_kz, by = component(b, ky) - shear_y * b_kz;
+  const float cx = component(c, kx) - shear_x * c_kz, cy = component(c, ky) - shear_y * c_kz;
 
   // Edge functions: twice the signed area of the sheared sub-triangle opposite each vertex.
   float u = cx * by - cy * bx;
@@ -81,7 +83,7 @@ std::optional<TriangleHit> intersect_triangle_watertight(const WatertightRay& ra
   const float det = u + v + w;
   if (det == 0.0f) return std::nullopt;  // zero area in projection: parallel ray or degenerate triangle
 
-  const float az = shear_z * a[kz], bz = shear_z * b[kz], cz = shear_z * c[kz];
+  const float az = shear_z * a_kz, bz = shear_z * b_kz, cz = shear_z * c_kz;
   const float inv_det = 1.0f / det;
   const float t = (u * az + v * bz + w * cz) * inv_det;
   if (!range.surrounds(t)) return std::nullopt;

@@ -93,27 +93,32 @@ BvhAggregate::BvhAggregate(std::shared_ptr<const PrimitiveSet> primitives, const
   for (size_t i = 0; i < flat_.size(); ++i) bounds.push_back(flat_.bounds(i));
   bvh_ = build_bvh(bounds, options);
   flat_.reorder(bvh_.order);  // entry = leaf slot from here on
+  if (options.wide) wide_ = collapse_to_wide(bvh_);
 }
 
 std::optional<PrimitiveHit> BvhAggregate::closest_hit(const Ray& ray, Interval range) const {
   TriangleHit barycentrics{}, nearest_barycentrics{};
   const TriangleRay prepared(ray);
-  const auto found = bvh_closest_hit(bvh_, ray, range, [&](std::uint32_t i, Interval r) {
+  auto hit_primitive = [&](std::uint32_t i, Interval r) {
     const std::optional<float> t = flat_.hit(i, prepared, r, &barycentrics);
     if (t) nearest_barycentrics = barycentrics;
     return t;
-  });
+  };
+  const auto found = wide_ ? wide_bvh_closest_hit(*wide_, ray, range, hit_primitive)
+                           : bvh_closest_hit(bvh_, ray, range, hit_primitive);
   if (!found) return std::nullopt;
   return flat_.record(found->second, found->first, nearest_barycentrics);
 }
 
 bool BvhAggregate::occluded(const Ray& ray, Interval range) const {
   const TriangleRay prepared(ray);
-  return bvh_any_hit(bvh_, ray, range, [&](std::uint32_t i, Interval r) { return flat_.hit(i, prepared, r).has_value(); });
+  auto hits_primitive = [&](std::uint32_t i, Interval r) { return flat_.hit(i, prepared, r).has_value(); };
+  return wide_ ? wide_bvh_any_hit(*wide_, ray, range, hits_primitive) : bvh_any_hit(bvh_, ray, range, hits_primitive);
 }
 
 size_t BvhAggregate::bytes() const {
-  return bvh_.nodes.size() * sizeof(BvhNode) + bvh_.order.size() * sizeof(std::uint32_t) +
+  return bvh_.nodes.size() * sizeof(BvhNode) + (wide_ ? wide_->nodes.size() * sizeof(WideBvhNode) : 0) +
+         bvh_.order.size() * sizeof(std::uint32_t) +
          flat_.size() * (sizeof(flat_.corners[0]) + sizeof(flat_.primitive[0])) +
          flat_.triangle_mesh.size() * 2 * sizeof(std::uint32_t);
 }

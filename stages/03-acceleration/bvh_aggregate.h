@@ -5,6 +5,7 @@
 
 #include "02-whitted/aggregate.h"
 #include "03-acceleration/bvh.h"
+#include "03-acceleration/wide_bvh.h"
 
 #include <array>
 
@@ -46,12 +47,14 @@ class BvhAggregate : public Aggregate {
   bool occluded(const Ray& ray, Interval range) const override;
 
   const Bvh& bvh() const { return bvh_; }
+  const std::optional<WideBvh>& wide_bvh() const { return wide_; }
   // Memory of the acceleration structure: nodes, leaf order and the copied corners.
   size_t bytes() const;
 
  private:
   FlatPrimitives flat_;
   Bvh bvh_;
+  std::optional<WideBvh> wide_;  // when built with BvhBuildOptions::wide
 };
 
 // For WhittedScene: `--accel naive|median|middle|sah`.

@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
   CommonOptions options;
   std::string debug_name = "none", accel_name = "sah";
   int leaf_size = 4;
+  bool wide = false;
 
   return run_stage_program(
       argc, argv, "stage3", "Stage 3: Whitted ray tracing over a bounding volume hierarchy", options,
@@ -48,6 +49,7 @@ int main(int argc, char** argv) {
             ->check(CLI::IsMember({"naive", "median", "middle", "sah"}));
         app.add_option("--leaf-size", leaf_size, "Largest leaf a BVH builder makes without trying to split")
             ->check(CLI::Range(1, 255));
+        app.add_flag("--wide", wide, "Traverse a 4-wide tree collapsed from the binary one (four box tests at once)");
         app.add_option("--debug", debug_name, "Debug view instead of shading: none, normal, depth, albedo")
             ->check(CLI::IsMember({"none", "normal", "depth", "albedo"}));
       },
@@ -58,6 +60,7 @@ int main(int argc, char** argv) {
         const RenderSettings settings = options.settings_for(description);
         BvhBuildOptions build;
         build.max_leaf_size = leaf_size;
+        build.wide = wide;
         const bool naive = accel_name == "naive";
         if (!naive) build.split = split_method_from_name(accel_name);
 
@@ -79,9 +82,10 @@ int main(int argc, char** argv) {
           size_t mesh_bytes = 0;
           for (const MeshEntry& m : scene.primitives().meshes)
             mesh_bytes += m.mesh.positions.size() * sizeof(Vec3) + m.mesh.triangles.size() * sizeof(m.mesh.triangles[0]);
-          std::printf(" (leaf size %d), built in %.3f s\n", leaf_size, build_seconds);
+          std::printf(" (leaf size %d%s), built in %.3f s\n", leaf_size, wide ? ", 4-wide" : "", build_seconds);
           std::printf("stage3: %zu nodes, %zu leaves, depth %zu, primitives per leaf %.2f mean / %zu max, SAH cost %.1f\n",
                       s.nodes, s.leaves, s.depth, s.mean_leaf_primitives, s.max_leaf_primitives, s.sah_cost);
+          if (bvh->wide_bvh()) std::printf("stage3: collapsed into %zu 4-wide nodes\n", bvh->wide_bvh()->nodes.size());
           if (triangles > 0)
             std::printf("stage3: memory %.1f bytes per triangle (mesh %.1f + BVH %.1f)\n",
                         double(mesh_bytes + bvh->bytes()) / double(triangles), double(mesh_bytes) / double(triangles),

@@ -44,7 +44,7 @@ Color direct_from_point_lights(const LightingScene& scene, const ShadingPoint& a
   // END TASK
 }
 
-Color direct_by_hemisphere(const LightingScene& scene, const ShadingPoint& at, bool cosine, Rng& rng,
+Color direct_by_hemisphere(const LightingScene& scene, const ShadingPoint& at, bool cosine, Sampler& rng,
                            const OffsetPolicy& offset) {
   // BEGIN TASK stage4.direct.hemisphere
   const Vec2 u = rng.uniform2();
@@ -60,7 +60,7 @@ Color direct_by_hemisphere(const LightingScene& scene, const ShadingPoint& at, b
   // END TASK
 }
 
-Color direct_by_brdf_sampling(const LightingScene& scene, const ShadingPoint& at, Rng& rng, const OffsetPolicy& offset) {
+Color direct_by_brdf_sampling(const LightingScene& scene, const ShadingPoint& at, Sampler& rng, const OffsetPolicy& offset) {
   // BEGIN TASK stage4.direct.brdf_sampling
   const Vec2 u = rng.uniform2();
   const std::optional<BrdfSample> s = at.brdf.sample(at.wo, u, rng.uniform());
@@ -73,30 +73,34 @@ Color direct_by_brdf_sampling(const LightingScene& scene, const ShadingPoint& at
   // END TASK
 }
 
-Color direct_by_light_sampling(const LightingScene& scene, const ShadingPoint& at, Rng& rng, const OffsetPolicy& offset) {
+DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingPoint& at, Sampler& rng,
+                                      const OffsetPolicy& offset) {
   const float u_choice = rng.uniform();
   const Vec2 u = rng.uniform2();
-  if (scene.emitter_distribution().empty()) return Color(0.0f);
+  if (scene.emitter_distribution().empty()) return {};
   // BEGIN TASK stage4.direct.light_sampling
   const DiscreteDistribution::Choice choice = scene.emitter_distribution().sample(u_choice);
   const AreaEmitter& emitter = scene.emitters()[size_t(choice.index)];
   const EmitterSample s = emitter.sample(at.hit.point, u);
-  if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return Color(0.0f);
+  if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return {};
+  DirectLightSample result;
+  result.wi = at.frame.to_local(s.wi);
+  result.pdf = choice.pmf * s.pdf;
   const Color le = emitter.radiance_towards(s.point, at.hit.point);
-  const Vec3 wi = at.frame.to_local(s.wi);
-  const Color f = at.brdf.eval(wi, at.wo);
-  if (le == Color(0.0f) || f == Color(0.0f)) return Color(0.0f);
+  const Color f = at.brdf.eval(result.wi, at.wo);
+  if (le == Color(0.0f) || f == Color(0.0f)) return result;
   const ShadowRay shadow = spawn_shadow_ray(at.hit, s.point, offset);
-  if (scene.occluded(shadow.ray, shadow.range)) return Color(0.0f);
-  return f * le * (wi.z / (choice.pmf * s.pdf));
+  if (scene.occluded(shadow.ray, shadow.range)) return result;
+  result.value = f * le * (result.wi.z / result.pdf);
+  return result;
   // PLACEHOLDER
   // report_unfinished_task("stage4.direct.light_sampling");
   // (void)at, (void)offset, (void)u_choice, (void)u;
-  // return Color(0.0f);
+  // return {};
   // END TASK
 }
 
-Color direct_radiance(const LightingScene& scene, const Ray& ray, const DirectOptions& options, Rng& rng, int depth) {
+Color direct_radiance(const LightingScene& scene, const Ray& ray, const DirectOptions& options, Sampler& rng, int depth) {
   const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
   if (!hit) return scene.background();
   const Color emitted = scene.emitted(*hit);

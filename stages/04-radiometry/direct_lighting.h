@@ -47,19 +47,32 @@ Color direct_from_point_lights(const LightingScene& scene, const ShadingPoint& a
 
 // Task stage4.direct.hemisphere. One direction from the uniform or the cosine-weighted hemisphere
 // (per `cosine`): f_r Le cos(theta_i) / p(wi), Le from the emitter the spawned ray hits first.
-Color direct_by_hemisphere(const LightingScene& scene, const ShadingPoint& at, bool cosine, Rng& rng,
+Color direct_by_hemisphere(const LightingScene& scene, const ShadingPoint& at, bool cosine, Sampler& rng,
                            const OffsetPolicy& offset);
 
 // Task stage4.direct.brdf_sampling. One direction from the BRDF's sample(): weight * Le.
-Color direct_by_brdf_sampling(const LightingScene& scene, const ShadingPoint& at, Rng& rng, const OffsetPolicy& offset);
+Color direct_by_brdf_sampling(const LightingScene& scene, const ShadingPoint& at, Sampler& rng, const OffsetPolicy& offset);
+
+// One light sample: its estimate, the direction it took and the density it was drawn with (stage 5
+// weighs it against the BRDF's density by multiple importance sampling).
+struct DirectLightSample {
+  Color value{0.0f};  // f_r Le cos(theta_i) / (P p), or 0 (back face, occluded, below the surface)
+  Vec3 wi{0.0f};      // local frame
+  float pdf = 0.0f;   // P p, per unit solid angle
+};
 
 // Task stage4.direct.light_sampling. One emitter chosen by power (probability P), one point on it
 // (solid-angle density p), a shadow ray: f_r Le cos(theta_i) / (P p).
-Color direct_by_light_sampling(const LightingScene& scene, const ShadingPoint& at, Rng& rng, const OffsetPolicy& offset);
+DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingPoint& at, Sampler& rng,
+                                      const OffsetPolicy& offset);
+inline Color direct_by_light_sampling(const LightingScene& scene, const ShadingPoint& at, Sampler& rng,
+                                      const OffsetPolicy& offset) {
+  return sample_direct_light(scene, at, rng, offset).value;
+}
 
 // The radiance arriving along a camera ray: what the first surface emits plus, for a non-delta
 // surface, its direct lighting (point lights, and one sample of the area emitters by the chosen
 // estimator); a delta surface passes on what its sampled lobe sees.
-Color direct_radiance(const LightingScene& scene, const Ray& ray, const DirectOptions& options, Rng& rng, int depth = 0);
+Color direct_radiance(const LightingScene& scene, const Ray& ray, const DirectOptions& options, Sampler& rng, int depth = 0);
 
 }  // namespace rt

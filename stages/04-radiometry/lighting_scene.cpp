@@ -45,7 +45,7 @@ LightingScene::LightingScene(const SceneDescription& description, const Lighting
                              const AggregateFactory& make_aggregate)
     : geometry_((check_materials(description), without_disks(description, geometry_shape_)),
                 options.triangle_method,
-                make_aggregate ? make_aggregate : bvh_aggregate_factory(BvhBuildOptions{})) {
+                make_aggregate ? make_aggregate : bvh_aggregate_factory(BvhBuildOptions{.wide = true})) {
   first_emitter_.assign(description.shapes.size(), -1);
   for (size_t i = 0; i < description.shapes.size(); ++i) {
     const Shape& shape = description.shapes[i];

@@ -19,7 +19,8 @@ class LightingScene {
  public:
   // Throws InputError naming the scene file and the shape or material for what stage 4 cannot
   // render: an emitting plane (infinite power), and a diffuse material with stage 1's empirical
-  // specular highlight (use type phong). `make_aggregate` defaults to a SAH BVH (stage 3).
+  // specular highlight (use type phong). `make_aggregate` defaults to a SAH BVH (stage 3), collapsed
+  // into a 4-wide tree for traversal.
   explicit LightingScene(const SceneDescription& description, const LightingOptions& options = {},
                          const AggregateFactory& make_aggregate = {});
 

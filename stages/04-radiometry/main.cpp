@@ -36,6 +36,6 @@ int main(int argc, char** argv) {
                     scene.point_lights().size());
         const PinholeCamera camera(description.camera, settings.width, settings.height);
         render_and_write("stage4", options, settings, camera, DebugView::none,
-                         [&](const Ray& ray, Rng& rng) { return direct_radiance(scene, ray, direct, rng); });
+                         [&](const Ray& ray, Sampler& rng) { return direct_radiance(scene, ray, direct, rng); });
       });
 }

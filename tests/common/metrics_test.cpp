@@ -35,6 +35,19 @@ TEST(Metrics, MeanOverARectangle) {
   EXPECT_THROW(mean_over(image, PixelRect{0, 0, 5, 1}), std::invalid_argument);
 }
 
+TEST(Metrics, DownsampleAveragesEachBlock) {
+  Image image(4, 2, Color(0.0f));
+  image.at(0, 0) = Color(4.0f);
+  image.at(3, 1) = Color(8.0f, 0.0f, 4.0f);
+  const Image small = downsample(image, 2);
+  ASSERT_EQ(small.width(), 2);
+  ASSERT_EQ(small.height(), 1);
+  EXPECT_EQ(small.at(0, 0), Color(1.0f));
+  EXPECT_EQ(small.at(1, 0), Color(2.0f, 0.0f, 1.0f));
+  EXPECT_THROW(downsample(image, 3), std::invalid_argument);
+  EXPECT_THROW(downsample(image, 0), std::invalid_argument);
+}
+
 TEST(Metrics, SizeMismatchIsAnError) {
   EXPECT_THROW(mse(Image(2, 2), Image(2, 3)), std::invalid_argument);
 }

@@ -4,18 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace rt {
 namespace {
 
 class Builders : public ::testing::TestWithParam<Builder> {
  protected:
-  BvhBuildOptions options() const {
-    BvhBuildOptions o;
-    o.split = GetParam().split;
-    o.max_leaf_size = GetParam().leaf_size;
-    return o;
-  }
+  BvhBuildOptions options() const { return GetParam().options(); }
 };
 
 TEST_P(Builders, AgreeWithTheSahTreeOnTheBunny) {
@@ -91,6 +87,43 @@ void expect_valid_tree(const Bvh& bvh, const std::vector<Aabb>& bounds) {
   EXPECT_LT(depth, Bvh::kStackSize);
 }
 
+// The 4-wide tree holds the binary tree's leaves, each exactly once; every child's box contains
+// what lies below it; unused children have empty boxes; it is no deeper than the binary tree.
+void expect_valid_wide_tree(const WideBvh& wide, const Bvh& bvh, const std::vector<Aabb>& bounds) {
+  if (bounds.empty()) {
+    EXPECT_TRUE(wide.nodes.empty());
+    return;
+  }
+  std::vector<int> seen(bounds.size(), 0);
+  // (node, the box its parent holds for it, depth)
+  std::vector<std::tuple<std::uint32_t, Aabb, int>> stack{{0, wide.bounds, 0}};
+  int depth = 0;
+  while (!stack.empty()) {
+    const auto [index, parent_box, d] = stack.back();
+    stack.pop_back();
+    ASSERT_LT(index, wide.nodes.size());
+    const WideBvhNode& node = wide.nodes[index];
+    depth = std::max(depth, d);
+    for (int i = 0; i < WideBvhNode::kWidth; ++i) {
+      const Aabb box{Vec3(node.lo[0][i], node.lo[1][i], node.lo[2][i]), Vec3(node.hi[0][i], node.hi[1][i], node.hi[2][i])};
+      if (box.is_empty() && node.count[i] == 0 && !(node.child[i] > index)) continue;  // unused
+      EXPECT_TRUE(parent_box.contains(box));
+      if (node.count[i] == 0) {
+        ASSERT_GT(node.child[i], index) << "children are made after their parent";
+        stack.push_back({node.child[i], box, d + 1});
+        continue;
+      }
+      for (std::uint32_t slot = node.child[i]; slot < node.child[i] + node.count[i]; ++slot) {
+        ASSERT_LT(slot, bounds.size());
+        ++seen[bvh.order[slot]];
+        EXPECT_TRUE(box.contains(bounds[bvh.order[slot]]));
+      }
+    }
+  }
+  for (size_t i = 0; i < bounds.size(); ++i) EXPECT_EQ(seen[i], 1) << "primitive " << i;
+  EXPECT_LE(size_t(depth + 1), bvh.stats().depth + 1);
+}
+
 std::vector<Aabb> triangle_bounds(const TriangleMesh& mesh) {
   std::vector<Aabb> bounds;
   for (const auto& c : mesh.triangles) {
@@ -114,7 +147,9 @@ TEST_P(Builders, TreesAreValidOnRealAndDegenerateInput) {
   inputs.push_back(flat);
   for (const auto& input : inputs) {
     SCOPED_TRACE(std::to_string(input.size()) + " primitives");
-    expect_valid_tree(build_bvh(input, options()), input);
+    const Bvh bvh = build_bvh(input, options());
+    expect_valid_tree(bvh, input);
+    if (options().wide) expect_valid_wide_tree(collapse_to_wide(bvh), bvh, input);
   }
 }
 
@@ -146,6 +181,45 @@ INSTANTIATE_TEST_SUITE_P(Bvh, Builders, ::testing::ValuesIn(kBuilders), [](const
 TEST(BvhLayout, NodesAreThirtyTwoBytes) {
   EXPECT_EQ(sizeof(BvhNode), 32u);
   EXPECT_EQ(alignof(BvhNode), 4u);
+  EXPECT_EQ(sizeof(WideBvhNode), 128u);  // four boxes, two cache lines
+}
+
+TEST(WideBvh, FourBoxTestMatchesTheSlabTestBoxByBox) {
+  // Random boxes (some flat, some empty) and rays with zero and negative-zero components: each
+  // lane of the four-box test must give exactly what intersect_aabb gives for that box.
+  Rng rng(31, 0, 0);
+  auto coordinate = [&] { return std::floor(8.0f * rng.uniform()) - 4.0f; };  // on a grid: origins on planes
+  for (int trial = 0; trial < 20000; ++trial) {
+    WideBvhNode node{};
+    Aabb boxes[4];
+    for (int i = 0; i < 4; ++i) {
+      for (int axis = 0; axis < 3; ++axis) {
+        const float a = coordinate(), b = coordinate();
+        boxes[i].lo[axis] = std::min(a, b);
+        boxes[i].hi[axis] = std::max(a, b);
+      }
+      if (trial % 7 == i) boxes[i] = Aabb{};  // empty
+      for (int axis = 0; axis < 3; ++axis) {
+        node.lo[axis][i] = boxes[i].lo[axis];
+        node.hi[axis][i] = boxes[i].hi[axis];
+      }
+    }
+    Vec3 d(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f);
+    if (trial % 3 == 0) d[trial % 9 / 3] = (trial % 2) ? 0.0f : -0.0f;
+    const Ray ray{Vec3(coordinate(), coordinate(), coordinate()), d};
+    const RayInverse inverse(ray);
+    const Interval range{0.0f, 10.0f * rng.uniform()};
+    float t[4];
+    int hit[4];
+    intersect_wide_node(node, inverse, range, t, hit);
+    for (int i = 0; i < 4; ++i) {
+      const std::optional<float> expected = intersect_aabb(boxes[i], inverse, range);
+      ASSERT_EQ(hit[i] != 0, expected.has_value()) << "trial " << trial << ", box " << i;
+      if (expected) {
+        EXPECT_EQ(t[i], *expected);
+      }
+    }
+  }
 }
 
 TEST(BvhLayout, SahBeatsTheOtherBuildersOnItsOwnCostModel) {

@@ -21,11 +21,21 @@ struct Builder {
   const char* name;
   SplitMethod split;
   int leaf_size;
+  bool wide = false;  // traversed as the 4-wide tree collapsed from it
+
+  BvhBuildOptions options() const {
+    BvhBuildOptions o;
+    o.split = split;
+    o.max_leaf_size = leaf_size;
+    o.wide = wide;
+    return o;
+  }
 };
 inline void PrintTo(const Builder& b, std::ostream* out) { *out << b.name; }
 inline const Builder kBuilders[] = {{"median", SplitMethod::median, 4}, {"middle", SplitMethod::middle, 4},
                              {"sah", SplitMethod::sah, 4},       {"median_leaf1", SplitMethod::median, 1},
-                             {"sah_leaf16", SplitMethod::sah, 16}};
+                             {"sah_leaf16", SplitMethod::sah, 16},    {"sah_wide", SplitMethod::sah, 4, true},
+                             {"median_leaf1_wide", SplitMethod::median, 1, true}};
 
 inline std::shared_ptr<PrimitiveSet> primitives_of(std::vector<TriangleMesh> meshes, std::vector<Sphere> spheres = {}) {
   auto set = std::make_shared<PrimitiveSet>();
@@ -115,11 +125,8 @@ inline void expect_builders_agree_with_naive(const std::shared_ptr<PrimitiveSet>
   std::vector<std::optional<PrimitiveHit>> truth;
   for (const Ray& ray : rays) truth.push_back(naive.closest_hit(ray, Interval::positive()));
   for (const Builder& b : kBuilders) {
-    BvhBuildOptions o;
-    o.split = b.split;
-    o.max_leaf_size = b.leaf_size;
     SCOPED_TRACE(b.name);
-    expect_same_answers(truth, BvhAggregate(set, o), rays);
+    expect_same_answers(truth, BvhAggregate(set, b.options()), rays);
   }
 }
 

@@ -19,8 +19,8 @@ TEST(Stage3Cli, EveryAcceleratorRendersTheSamePicture) {
   ScratchDir dir;
   const std::string scene = source_path("assets/scenes/whitted.json").string();
   std::vector<Image> images;
-  for (const char* accel : {"naive", "median", "middle", "sah"}) {
-    const auto out = dir / (std::string(accel) + ".pfm");
+  for (const char* accel : {"naive", "median", "middle", "sah", "sah --wide"}) {
+    const auto out = dir / (std::to_string(images.size()) + ".pfm");
     const auto r = run_command(stage3("--scene " + scene + " --width 64 --height 40 --spp 1 --accel " + accel +
                                       " --out " + out.string()), dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -52,6 +52,10 @@ TEST(Stage3Cli, ReportsTheTree) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* figure : {"69451 triangles", "leaf size 8", "nodes", "depth", "bytes per triangle", "rays/s"})
     EXPECT_NE(r.out.find(figure), std::string::npos) << figure << " in:\n" << r.out;
+  const auto wide = run_command(stage3("--scene " + source_path("assets/scenes/bunny.json").string() +
+                                       " --width 32 --height 24 --spp 1 --wide --out " + (dir / "w.png").string()), dir);
+  ASSERT_EQ(wide.exit_code, 0) << wide.err;
+  EXPECT_NE(wide.out.find("4-wide nodes"), std::string::npos) << wide.out;
 }
 
 TEST(Stage3Cli, RendersAMillionTriangles) {

@@ -1,0 +1,27 @@
+#include "05-path-tracing/path_render.h"
+
+#include "05-path-tracing/sobol_sampler.h"
+
+namespace rt {
+
+const char* integrator_name(PathIntegrator integrator) {
+  switch (integrator) {
+    case PathIntegrator::naive: return "naive";
+    case PathIntegrator::russian_roulette: return "rr";
+    case PathIntegrator::light_sampling: return "nee";
+    case PathIntegrator::mis: return "mis";
+  }
+  return "?";
+}
+
+const char* sampler_name(SamplerKind sampler) { return sampler == SamplerKind::sobol ? "sobol" : "independent"; }
+
+Image render_paths(const LightingScene& scene, const PinholeCamera& camera, const RenderSettings& settings,
+                   const PathOptions& options, SamplerKind sampler, int threads, SampleGuard& guard,
+                   ProgressBar* progress) {
+  auto radiance = [&](const Ray& ray, Sampler& numbers) { return guard(path_radiance(scene, ray, options, numbers)); };
+  if (sampler == SamplerKind::sobol) return render_image<SobolSampler>(camera, settings, threads, radiance, progress);
+  return render_image<Rng>(camera, settings, threads, radiance, progress);
+}
+
+}  // namespace rt

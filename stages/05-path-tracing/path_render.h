@@ -1,0 +1,22 @@
+// Stage 5: a whole image by path tracing: stage 1's pixel loop (a box filter over each pixel) with
+// the integrator's radiance, each sample's numbers from the chosen sampler. Shared by the program,
+// the tests and the benchmarks, so all three render the same way.
+#pragma once
+
+#include "01-ray-casting/render.h"
+#include "05-path-tracing/path_tracer.h"
+
+namespace rt {
+
+enum class SamplerKind { independent, sobol };
+
+const char* integrator_name(PathIntegrator integrator);  // naive, rr, nee, mis (the program's flags)
+const char* sampler_name(SamplerKind sampler);           // independent, sobol
+
+// The image of `settings.spp` paths per pixel. Samples with NaN, infinite or negative radiance are
+// counted by `guard` and enter the image as black. Deterministic for any thread count.
+Image render_paths(const LightingScene& scene, const PinholeCamera& camera, const RenderSettings& settings,
+                   const PathOptions& options, SamplerKind sampler, int threads, SampleGuard& guard,
+                   ProgressBar* progress = nullptr);
+
+}  // namespace rt

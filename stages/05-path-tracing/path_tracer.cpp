@@ -1,0 +1,101 @@
+#include "05-path-tracing/path_tracer.h"
+
+#include "common/task.h"
+
+namespace rt {
+
+float survival_probability(Color beta) {
+  // BEGIN TASK stage5.path.russian_roulette
+  return std::min(0.95f, max_component(beta));
+  // PLACEHOLDER
+  // report_unfinished_task("stage5.path.russian_roulette");
+  // (void)beta;
+  // return 0.95f;
+  // END TASK
+}
+
+float power_heuristic(float pdf_a, float pdf_b) {
+  // BEGIN TASK stage5.path.mis_weight
+  if (std::isinf(pdf_a)) return 1.0f;
+  const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
+  return a + b > 0.0f ? a / (a + b) : 0.0f;
+  // PLACEHOLDER
+  // report_unfinished_task("stage5.path.mis_weight");
+  // (void)pdf_a, (void)pdf_b;
+  // return 0.5f;
+  // END TASK
+}
+
+float light_sampling_pdf(const LightingScene& scene, Vec3 from, const Hit& hit) {
+  const int index = scene.emitter_index(hit);
+  if (index < 0) return 0.0f;
+  return scene.emitter_distribution().pmf(index) * scene.emitters()[size_t(index)].pdf(from, hit.point);
+}
+
+Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const PathOptions& options, Sampler& rng) {
+  const PathIntegrator integrator = options.integrator;
+  const bool samples_lights = integrator == PathIntegrator::light_sampling || integrator == PathIntegrator::mis;
+  Color radiance(0.0f), beta(1.0f);
+  Ray ray = camera_ray;
+  // What the previous bounce was: a delta lobe (or the camera), and the density it sampled with.
+  bool after_delta = true;
+  float brdf_pdf = 0.0f;
+  Vec3 previous_point(0.0f);
+
+  for (int bounce = 0;; ++bounce) {
+    const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
+    if (!hit) {
+      radiance += beta * scene.background();
+      break;
+    }
+    // BEGIN TASK stage5.path.emitted
+    // Emitted light found by the path itself. With light sampling, the previous vertex already
+    // counted it (unless it was a delta lobe, which light sampling cannot serve); with MIS, both
+    // counted it, each with its weight.
+    const Color le = scene.emitted(*hit);
+    if (le != Color(0.0f)) {
+      if (!samples_lights || after_delta) {
+        radiance += beta * le;
+      } else if (integrator == PathIntegrator::mis) {
+        const float w = power_heuristic(brdf_pdf, light_sampling_pdf(scene, previous_point, *hit));
+        radiance += beta * le * w;
+      }
+    }
+    // PLACEHOLDER
+    // report_unfinished_task("stage5.path.emitted");
+    // const Color le = scene.emitted(*hit);
+    // if (!samples_lights || after_delta) radiance += beta * le;
+    // (void)brdf_pdf, (void)previous_point;  // what the MIS weight needs
+    // END TASK
+    if (integrator == PathIntegrator::naive ? bounce >= options.max_depth : bounce >= options.max_bounces) break;
+
+    const ShadingPoint at = make_shading_point(scene, *hit, -ray.direction);
+    // BEGIN TASK stage5.path.next_event
+    if (samples_lights && !at.brdf.is_delta()) {
+      const DirectLightSample light = sample_direct_light(scene, at, rng, options.offset);
+      const float w = integrator == PathIntegrator::mis ? power_heuristic(light.pdf, at.brdf.pdf(light.wi, at.wo)) : 1.0f;
+      radiance += beta * light.value * w;
+    }
+    // PLACEHOLDER
+    // report_unfinished_task("stage5.path.next_event");
+    // END TASK
+
+    const Vec2 u = rng.uniform2();
+    const std::optional<BrdfSample> s = at.brdf.sample(at.wo, u, rng.uniform());
+    if (!s) break;
+    beta *= s->weight;
+    after_delta = s->delta;
+    brdf_pdf = s->pdf;
+    previous_point = hit->point;
+    ray = spawn_ray(*hit, at.frame.to_world(s->wi), options.offset);
+
+    if (integrator != PathIntegrator::naive && bounce + 1 >= options.roulette_start) {
+      const float p = survival_probability(beta);
+      if (!(rng.uniform() < p)) break;
+      beta /= p;
+    }
+  }
+  return radiance;
+}
+
+}  // namespace rt

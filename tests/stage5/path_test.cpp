@@ -1,0 +1,181 @@
+// Stage 5: the path tracer against closed forms (the furnace, stage 4's direct-lighting scenes) and
+// its integrators against each other on the Cornell box.
+#include "05-path-tracing/path_tracer.h"
+#include "04-radiometry/radiometry.h"
+#include "stage4/closed_form.h"
+
+#include "support/test_support.h"
+
+#include <gtest/gtest.h>
+
+namespace rt {
+namespace {
+
+const PathIntegrator kIntegrators[] = {PathIntegrator::naive, PathIntegrator::russian_roulette,
+                                       PathIntegrator::light_sampling, PathIntegrator::mis};
+const char* name(PathIntegrator i) {
+  switch (i) {
+    case PathIntegrator::naive: return "naive";
+    case PathIntegrator::russian_roulette: return "rr";
+    case PathIntegrator::light_sampling: return "nee";
+    case PathIntegrator::mis: return "mis";
+  }
+  return "?";
+}
+
+struct Estimate {
+  double mean, standard_error;
+};
+
+// `paths` independent paths along one ray: mean and standard error of the red channel.
+Estimate estimate(const LightingScene& scene, const Ray& ray, const PathOptions& options, int paths,
+                  std::uint64_t seed = 1, int channel = 0) {
+  double sum = 0.0, sum2 = 0.0;
+  for (int k = 0; k < paths; ++k) {
+    Rng rng(seed, 0, std::uint64_t(k));
+    const double v = path_radiance(scene, ray, options, rng)[channel];
+    sum += v;
+    sum2 += v * v;
+  }
+  const double m = sum / paths;
+  return {m, std::sqrt(std::max(0.0, sum2 / paths - m * m) / paths)};
+}
+
+// A closed 2 x 2 x 2 box, every wall facing in, of albedo rho and emission Le.
+LightingScene furnace(float albedo, float emission) {
+  const std::string a = std::to_string(albedo), e = std::to_string(emission);
+  const std::string json = R"({"camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "vfov": 40},
+    "materials": {"wall": {"albedo": [)" + a + "," + a + "," + a + R"(], "emission": [)" + e + "," + e + "," + e + R"(]}},
+    "shapes": [
+      {"type": "quad", "material": "wall", "vertices": [[-1,-1,1], [1,-1,1], [1,-1,-1], [-1,-1,-1]]},
+      {"type": "quad", "material": "wall", "vertices": [[1,1,-1], [1,1,1], [-1,1,1], [-1,1,-1]]},
+      {"type": "quad", "material": "wall", "vertices": [[-1,1,-1], [-1,1,1], [-1,-1,1], [-1,-1,-1]]},
+      {"type": "quad", "material": "wall", "vertices": [[1,-1,1], [1,1,1], [1,1,-1], [1,-1,-1]]},
+      {"type": "quad", "material": "wall", "vertices": [[1,-1,-1], [1,1,-1], [-1,1,-1], [-1,-1,-1]]},
+      {"type": "quad", "material": "wall", "vertices": [[-1,1,1], [1,1,1], [1,-1,1], [-1,-1,1]]}]})";
+  return LightingScene(parse_scene(json, "furnace.json"));
+}
+
+TEST(Furnace, EveryIntegratorFindsLeOverOneMinusRho) {
+  // A closed Lambertian enclosure: L = Le + rho L everywhere, so L = Le / (1 - rho) = 1 here. The
+  // naive integrator stops after D bounces: L_D = Le (1 - rho^(D+1)) / (1 - rho).
+  const LightingScene scene = furnace(0.5f, 0.5f);
+  PathOptions options;
+  options.max_depth = 5;
+  for (const Vec3 d : {Vec3(0, 0, 1), glm::normalize(Vec3(1, 1, 1)), glm::normalize(Vec3(0.3f, -1, 0.01f))})
+    for (const PathIntegrator i : kIntegrators) {
+      options.integrator = i;
+      const Estimate e = estimate(scene, Ray{Vec3(0.1f, 0.2f, -0.3f), d}, options, 20000);
+      const double exact = i == PathIntegrator::naive ? 0.5 * (1.0 - std::pow(0.5, 6)) / 0.5 : 1.0;
+      EXPECT_NEAR(e.mean, exact, 4.0 * e.standard_error + 1e-5) << name(i);
+      EXPECT_LT(e.standard_error, 0.02) << name(i);  // 2% of the answer, as in stage 4
+    }
+}
+
+TEST(PathClosedForm, DiskOverAnOpenFloor) {
+  // Stage 4's coaxial disk over a floor, with nothing for light to bounce back from: the path
+  // tracer's answer is the direct light alone, rho L F.
+  const std::string json = R"({"camera": {"position": [3, 0.2, 0], "look_at": [0, 0, 0], "vfov": 40},
+    "materials": {"floor": {"albedo": [0.5, 0.5, 0.5]}, "light": {"emission": [4, 4, 4], "albedo": [0, 0, 0]}},
+    "shapes": [{"type": "quad", "material": "floor", "vertices": [[-10, 0, -10], [-10, 0, 10], [10, 0, 10], [10, 0, -10]]},
+               {"type": "disk", "material": "light", "center": [0, 1, 0], "normal": [0, -1, 0], "radius": 0.5}]})";
+  const LightingScene scene(parse_scene(json, "disk.json"));
+  const double exact = 0.5 * 4.0 * testing::factor_to_coaxial_disk(0.5, 1.0);
+  PathOptions options;
+  for (const PathIntegrator i : kIntegrators) {
+    options.integrator = i;
+    const Estimate e = estimate(scene, Ray{Vec3(3, 0.2f, 0), glm::normalize(Vec3(-3, -0.2f, 0))}, options, 40000);
+    EXPECT_NEAR(e.mean, exact, 4.0 * e.standard_error) << name(i);
+    EXPECT_LT(e.standard_error, 0.02 * exact) << name(i);
+  }
+}
+
+TEST(PathClosedForm, QuadLightMatchesLambertsPolygonFormula) {
+  // A trapezoid light, split into triangles of areas 1 and 2, facing down over an open floor: the floor
+  // radiance is rho E / pi with E from Lambert's polygon formula (Arvo 1995), at points under the
+  // small half, under the large half, and beside the light. Choosing the halves with equal
+  // probability while dividing by the density of a uniform point on the whole quad would weigh the
+  // small half by 3/2 and the large one by 3/4: the first point brighter, the second darker, far
+  // outside the bound, where an image of the whole floor could average the two away.
+  const std::string json = R"({"camera": {"position": [0, 3, -3], "look_at": [0, 0, 0], "vfov": 40},
+    "materials": {"floor": {"albedo": [0.5, 0.5, 0.5]}, "light": {"emission": [3, 3, 3], "albedo": [0, 0, 0]}},
+    "shapes": [{"type": "quad", "material": "floor", "vertices": [[-10, 0, -10], [-10, 0, 10], [10, 0, 10], [10, 0, -10]]},
+               {"type": "quad", "material": "light", "vertices": [[3, 1, 0], [1, 1, 1], [-1, 1, 1], [-1, 1, 0]]}]})";
+  const LightingScene scene(parse_scene(json, "trapezoid.json"));
+  const std::vector<Vec3> light = {{3, 1, 0}, {1, 1, 1}, {-1, 1, 1}, {-1, 1, 0}};
+  PathOptions options;
+  for (const Vec3 p : {Vec3(0.5f, 0, 0.8f), Vec3(0.0f, 0, 0.2f), Vec3(2.5f, 0, -0.6f)}) {
+    const double exact = 0.5 / kPi * polygon_irradiance(p, Vec3(0, 1, 0), light, 3.0f);
+    // A short ray straight down onto the point, from just above it (below the light).
+    const Ray ray{p + Vec3(0, 0.01f, 0), Vec3(0, -1, 0)};
+    for (const PathIntegrator i : kIntegrators) {
+      options.integrator = i;
+      const Estimate e = estimate(scene, ray, options, i == PathIntegrator::naive || i == PathIntegrator::russian_roulette ? 80000 : 20000);
+      EXPECT_NEAR(e.mean, exact, 4.0 * e.standard_error) << name(i) << " at x = " << p.x;
+      EXPECT_LT(e.standard_error, 0.02 * exact) << name(i) << " at x = " << p.x;
+    }
+  }
+}
+
+TEST(PathClosedForm, EmittersAreOneSided) {
+  // The disk of the test above turned to face up, away from the floor: the floor sees only its
+  // back, which emits nothing, so every integrator must return exactly 0 (light samples there have
+  // cos theta' < 0, and BRDF samples that hit the back find no emission).
+  const std::string json = R"({"camera": {"position": [3, 0.2, 0], "look_at": [0, 0, 0], "vfov": 40},
+    "materials": {"floor": {"albedo": [0.5, 0.5, 0.5]}, "light": {"emission": [4, 4, 4], "albedo": [0, 0, 0]}},
+    "shapes": [{"type": "quad", "material": "floor", "vertices": [[-10, 0, -10], [-10, 0, 10], [10, 0, 10], [10, 0, -10]]},
+               {"type": "disk", "material": "light", "center": [0, 1, 0], "normal": [0, 1, 0], "radius": 0.5}]})";
+  const LightingScene scene(parse_scene(json, "disk-up.json"));
+  PathOptions options;
+  for (const PathIntegrator i : kIntegrators) {
+    options.integrator = i;
+    const Estimate e = estimate(scene, Ray{Vec3(0.2f, 0.01f, 0), Vec3(0, -1, 0)}, options, 20000);
+    EXPECT_EQ(e.mean, 0.0) << name(i);
+  }
+}
+
+TEST(RussianRoulette, LeavesTheExpectationUnchanged) {
+  // With roulette from the first bounce, and with a fixed depth far beyond where paths matter
+  // (rho^64 is negligible), the means agree.
+  const LightingScene scene = furnace(0.7f, 0.3f);
+  const Ray ray{Vec3(0.0f), glm::normalize(Vec3(0.2f, 0.1f, 1.0f))};
+  PathOptions fixed, roulette;
+  fixed.integrator = PathIntegrator::naive;
+  fixed.max_depth = 64;
+  roulette.integrator = PathIntegrator::russian_roulette;
+  roulette.roulette_start = 1;
+  const Estimate a = estimate(scene, ray, fixed, 20000), b = estimate(scene, ray, roulette, 20000, 2);
+  EXPECT_NEAR(a.mean, b.mean, 4.0 * std::hypot(a.standard_error, b.standard_error));
+  EXPECT_NEAR(b.mean, 1.0, 4.0 * b.standard_error);
+}
+
+TEST(PathRobustness, NoNanOrInfFromGrazingAndCornerPaths) {
+  const SceneDescription description = load_scene(testing::source_path("assets/scenes/cornell-box.json"));
+  const LightingScene scene(description);
+  PathOptions options;
+  Rng rng(5, 0, 0);
+  int bad = 0;
+  for (const PathIntegrator i : kIntegrators) {
+    options.integrator = i;
+    for (int k = 0; k < 20000; ++k) {
+      // From a box corner, along the walls and into the edges where two walls meet.
+      const Vec3 origin(1e-3f * rng.uniform(), 548.8f * rng.uniform(), 1e-3f * rng.uniform());
+      const Vec3 target(552.8f * rng.uniform(), 0.0f, 559.2f);
+      const Color l = path_radiance(scene, Ray{origin, glm::normalize(target - origin)}, options, rng);
+      bad += is_finite(l) && min_component(l) >= 0.0f ? 0 : 1;
+    }
+  }
+  EXPECT_EQ(bad, 0);
+}
+
+TEST(SampleGuard, CountsAndDropsBadSamples) {
+  SampleGuard guard;
+  EXPECT_EQ(guard(Color(1.0f, 2.0f, 3.0f)), Color(1.0f, 2.0f, 3.0f));
+  EXPECT_EQ(guard(Color(std::nanf(""), 1.0f, 1.0f)), Color(0.0f));
+  EXPECT_EQ(guard(Color(kInfinity, 1.0f, 1.0f)), Color(0.0f));
+  EXPECT_EQ(guard(Color(-1e-3f, 1.0f, 1.0f)), Color(0.0f));
+  EXPECT_EQ(guard.dropped(), 3u);
+}
+
+}  // namespace
+}  // namespace rt
