@@ -16,9 +16,7 @@ int main(int argc, char** argv) {
       [&](CLI::App& app) {
         add_max_depth_flag(app, options);
         std::map<std::string, PathIntegrator> integrators;
-        for (const PathIntegrator i : {PathIntegrator::naive, PathIntegrator::russian_roulette,
-                                       PathIntegrator::light_sampling, PathIntegrator::mis})
-          integrators[integrator_name(i)] = i;
+        for (const PathIntegrator i : kPathIntegrators) integrators[integrator_name(i)] = i;
         app.add_option("--integrator", path.integrator,
                        "naive (BRDF sampling, fixed depth), rr (Russian roulette), nee (light sampling), "
                        "or mis (the default)")

@@ -10,7 +10,10 @@ namespace rt {
 
 enum class SamplerKind { independent, sobol };
 
-const char* integrator_name(PathIntegrator integrator);  // naive, rr, nee, mis (the program's flags)
+// Every integrator, in the lecture's order, and its name as the program's flag spells it.
+inline constexpr PathIntegrator kPathIntegrators[] = {PathIntegrator::naive, PathIntegrator::russian_roulette,
+                                                      PathIntegrator::light_sampling, PathIntegrator::mis};
+const char* integrator_name(PathIntegrator integrator);  // naive, rr, nee, mis
 const char* sampler_name(SamplerKind sampler);           // independent, sobol
 
 // The image of `settings.spp` paths per pixel. Samples with NaN, infinite or negative radiance are

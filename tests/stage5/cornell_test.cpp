@@ -74,8 +74,7 @@ TEST(CornellBox, EveryIntegratorFindsTheReferenceOnEveryRegion) {
   const Cornell& c = cornell();
   for (const Region& region : kRegions) {
     const double expected = grey(mean_over(c.reference, region.rect));
-    for (const PathIntegrator integrator : {PathIntegrator::naive, PathIntegrator::russian_roulette,
-                                            PathIntegrator::light_sampling, PathIntegrator::mis}) {
+    for (const PathIntegrator integrator : kPathIntegrators) {
       PathOptions options;
       options.integrator = integrator;
       options.max_depth = 64;  // naive: 0.73^64 of the light is left out, nothing measurable
@@ -154,8 +153,7 @@ TEST(CornellBox, TenMillionPathsGiveNoNanOrInfPixel) {
   RenderSettings settings;
   settings.width = settings.height = kSize;
   settings.spp = 640;
-  for (const PathIntegrator integrator : {PathIntegrator::naive, PathIntegrator::russian_roulette,
-                                          PathIntegrator::light_sampling, PathIntegrator::mis}) {
+  for (const PathIntegrator integrator : kPathIntegrators) {
     PathOptions options;
     options.integrator = integrator;
     SampleGuard guard;

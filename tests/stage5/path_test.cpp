@@ -1,6 +1,6 @@
-// Stage 5: the path tracer against closed forms (the furnace, stage 4's direct-lighting scenes) and
-// its integrators against each other on the Cornell box.
-#include "05-path-tracing/path_tracer.h"
+// Stage 5: the path tracer against closed forms (the furnace, stage 4's direct-lighting scenes and
+// Lambert's polygon formula), Russian roulette, and paths that graze and hit corners.
+#include "05-path-tracing/path_render.h"
 #include "04-radiometry/radiometry.h"
 #include "stage4/closed_form.h"
 
@@ -10,18 +10,6 @@
 
 namespace rt {
 namespace {
-
-const PathIntegrator kIntegrators[] = {PathIntegrator::naive, PathIntegrator::russian_roulette,
-                                       PathIntegrator::light_sampling, PathIntegrator::mis};
-const char* name(PathIntegrator i) {
-  switch (i) {
-    case PathIntegrator::naive: return "naive";
-    case PathIntegrator::russian_roulette: return "rr";
-    case PathIntegrator::light_sampling: return "nee";
-    case PathIntegrator::mis: return "mis";
-  }
-  return "?";
-}
 
 struct Estimate {
   double mean, standard_error;
@@ -63,12 +51,12 @@ TEST(Furnace, EveryIntegratorFindsLeOverOneMinusRho) {
   PathOptions options;
   options.max_depth = 5;
   for (const Vec3 d : {Vec3(0, 0, 1), glm::normalize(Vec3(1, 1, 1)), glm::normalize(Vec3(0.3f, -1, 0.01f))})
-    for (const PathIntegrator i : kIntegrators) {
+    for (const PathIntegrator i : kPathIntegrators) {
       options.integrator = i;
       const Estimate e = estimate(scene, Ray{Vec3(0.1f, 0.2f, -0.3f), d}, options, 20000);
       const double exact = i == PathIntegrator::naive ? 0.5 * (1.0 - std::pow(0.5, 6)) / 0.5 : 1.0;
-      EXPECT_NEAR(e.mean, exact, 4.0 * e.standard_error + 1e-5) << name(i);
-      EXPECT_LT(e.standard_error, 0.02) << name(i);  // 2% of the answer, as in stage 4
+      EXPECT_NEAR(e.mean, exact, 4.0 * e.standard_error + 1e-5) << integrator_name(i);
+      EXPECT_LT(e.standard_error, 0.02) << integrator_name(i);  // 2% of the answer, as in stage 4
     }
 }
 
@@ -82,11 +70,11 @@ TEST(PathClosedForm, DiskOverAnOpenFloor) {
   const LightingScene scene(parse_scene(json, "disk.json"));
   const double exact = 0.5 * 4.0 * testing::factor_to_coaxial_disk(0.5, 1.0);
   PathOptions options;
-  for (const PathIntegrator i : kIntegrators) {
+  for (const PathIntegrator i : kPathIntegrators) {
     options.integrator = i;
     const Estimate e = estimate(scene, Ray{Vec3(3, 0.2f, 0), glm::normalize(Vec3(-3, -0.2f, 0))}, options, 40000);
-    EXPECT_NEAR(e.mean, exact, 4.0 * e.standard_error) << name(i);
-    EXPECT_LT(e.standard_error, 0.02 * exact) << name(i);
+    EXPECT_NEAR(e.mean, exact, 4.0 * e.standard_error) << integrator_name(i);
+    EXPECT_LT(e.standard_error, 0.02 * exact) << integrator_name(i);
   }
 }
 
@@ -108,11 +96,11 @@ TEST(PathClosedForm, QuadLightMatchesLambertsPolygonFormula) {
     const double exact = 0.5 / kPi * polygon_irradiance(p, Vec3(0, 1, 0), light, 3.0f);
     // A short ray straight down onto the point, from just above it (below the light).
     const Ray ray{p + Vec3(0, 0.01f, 0), Vec3(0, -1, 0)};
-    for (const PathIntegrator i : kIntegrators) {
+    for (const PathIntegrator i : kPathIntegrators) {
       options.integrator = i;
       const Estimate e = estimate(scene, ray, options, i == PathIntegrator::naive || i == PathIntegrator::russian_roulette ? 80000 : 20000);
-      EXPECT_NEAR(e.mean, exact, 4.0 * e.standard_error) << name(i) << " at x = " << p.x;
-      EXPECT_LT(e.standard_error, 0.02 * exact) << name(i) << " at x = " << p.x;
+      EXPECT_NEAR(e.mean, exact, 4.0 * e.standard_error) << integrator_name(i) << " at x = " << p.x;
+      EXPECT_LT(e.standard_error, 0.02 * exact) << integrator_name(i) << " at x = " << p.x;
     }
   }
 }
@@ -127,10 +115,10 @@ TEST(PathClosedForm, EmittersAreOneSided) {
                {"type": "disk", "material": "light", "center": [0, 1, 0], "normal": [0, 1, 0], "radius": 0.5}]})";
   const LightingScene scene(parse_scene(json, "disk-up.json"));
   PathOptions options;
-  for (const PathIntegrator i : kIntegrators) {
+  for (const PathIntegrator i : kPathIntegrators) {
     options.integrator = i;
     const Estimate e = estimate(scene, Ray{Vec3(0.2f, 0.01f, 0), Vec3(0, -1, 0)}, options, 20000);
-    EXPECT_EQ(e.mean, 0.0) << name(i);
+    EXPECT_EQ(e.mean, 0.0) << integrator_name(i);
   }
 }
 
@@ -155,7 +143,7 @@ TEST(PathRobustness, NoNanOrInfFromGrazingAndCornerPaths) {
   PathOptions options;
   Rng rng(5, 0, 0);
   int bad = 0;
-  for (const PathIntegrator i : kIntegrators) {
+  for (const PathIntegrator i : kPathIntegrators) {
     options.integrator = i;
     for (int k = 0; k < 20000; ++k) {
       // From a box corner, along the walls and into the edges where two walls meet.
