@@ -17,6 +17,7 @@ packages=(
   libbenchmark-dev                # benchmarks
   libembree-dev                   # Embree: the production ceiling in the stage-3 benchmarks (optional to the build)
   python3-matplotlib              # charts (tools/make-charts.sh)
+  python3-numpy                   # the grader's image statistics (tools/grade.py)
 )
 
 missing=()

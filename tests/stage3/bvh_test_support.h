@@ -119,14 +119,43 @@ inline void expect_same_answers(const Aggregate& reference, const Aggregate& tes
   expect_same_answers(truth, tested, rays);
 }
 
-// Brute force once, then every builder against it: same hit or miss, same t, same primitive.
+// Whether a tree culls: a traversal told that nothing is ever hit (so its range never shrinks) must
+// still open only leaves holding a small share of the primitives, averaged over rays aimed at the
+// scene. An unfinished split (a tree not sorted by position) or an unfinished traversal (every
+// primitive tested) fails here at once, naming the tasks, instead of after minutes of brute force.
+inline ::testing::AssertionResult tree_culls(const BvhAggregate& bvh, const PrimitiveSet& set, double max_share = 0.3) {
+  const size_t primitives = bvh.bvh().order.size();
+  size_t tested = 0;
+  auto count = [&](std::uint32_t, Interval) {
+    ++tested;
+    return std::optional<float>();
+  };
+  const std::vector<Ray> rays = random_rays(set, 64, 11);
+  for (const Ray& ray : rays) {
+    if (bvh.wide_bvh()) wide_bvh_closest_hit(*bvh.wide_bvh(), ray, Interval::positive(), count);
+    else bvh_closest_hit(bvh.bvh(), ray, Interval::positive(), count);
+  }
+  const double share = double(tested) / double(rays.size() * primitives);
+  if (share <= max_share) return ::testing::AssertionSuccess() << share;
+  return ::testing::AssertionFailure() << "a ray opens leaves holding " << 100.0 * share << "% of the " << primitives
+                                       << " primitives: the tree does not cull (tasks stage3.bvh.*_split, "
+                                       << "stage3.bvh.closest_hit)";
+}
+
+// Every builder's tree culls; then brute force once, and every builder against it: same hit or
+// miss, same t, same primitive.
 inline void expect_builders_agree_with_naive(const std::shared_ptr<PrimitiveSet>& set, const std::vector<Ray>& rays) {
+  std::vector<std::unique_ptr<BvhAggregate>> trees;
+  for (const Builder& b : kBuilders) {
+    trees.push_back(std::make_unique<BvhAggregate>(set, b.options()));
+    ASSERT_TRUE(tree_culls(*trees.back(), *set)) << b.name;
+  }
   const NaiveAggregate naive(set);
   std::vector<std::optional<PrimitiveHit>> truth;
   for (const Ray& ray : rays) truth.push_back(naive.closest_hit(ray, Interval::positive()));
-  for (const Builder& b : kBuilders) {
-    SCOPED_TRACE(b.name);
-    expect_same_answers(truth, BvhAggregate(set, b.options()), rays);
+  for (size_t i = 0; i < trees.size(); ++i) {
+    SCOPED_TRACE(kBuilders[i].name);
+    expect_same_answers(truth, *trees[i], rays);
   }
 }
 

@@ -38,7 +38,7 @@ TEST(Stage3Cli, EveryAcceleratorRendersTheSamePicture) {
 
 TEST(Stage3Cli, SameImageForAnyThreadCount) {
   ScratchDir dir;
-  const std::string base = "--scene " + source_path("assets/scenes/bunny.json").string() + " --width 48 --height 36 --spp 2";
+  const std::string base = "--scene " + source_path("assets/scenes/bunny.json").string() + " --width 32 --height 24 --spp 2";
   ASSERT_EQ(run_command(stage3(base + " --threads 1 --out " + (dir / "one.pfm").string()), dir).exit_code, 0);
   ASSERT_EQ(run_command(stage3(base + " --threads 2 --out " + (dir / "two.pfm").string()), dir).exit_code, 0);
   EXPECT_TRUE(read_pfm(dir / "one.pfm") == read_pfm(dir / "two.pfm"));
@@ -62,7 +62,7 @@ TEST(Stage3Cli, RendersAMillionTriangles) {
   // Sixteen placed copies of the bunny: 1,111,216 triangles in one tree.
   ScratchDir dir;
   const auto r = run_command(stage3("--scene " + source_path("assets/scenes/bunnies.json").string() +
-                                    " --width 24 --height 16 --spp 1 --accel middle --out " + (dir / "b.png").string()), dir);
+                                    " --width 12 --height 8 --spp 1 --accel middle --out " + (dir / "b.png").string()), dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("1111216 triangles"), std::string::npos) << r.out;
   EXPECT_TRUE(std::filesystem::exists(dir / "b.png"));

@@ -29,7 +29,8 @@ TEST(Stage5Cli, EveryIntegratorAndSamplerRendersTheCornellBox) {
       ASSERT_EQ(r.exit_code, 0) << r.err;
       EXPECT_EQ(r.out.find("NaN"), std::string::npos) << r.out;  // no dropped samples to report
       // The back wall's middle is lit (light sampling finds it at once; BRDF sampling at 8 spp too).
-      EXPECT_GT(mean_over(read_pfm(out), PixelRect{12, 8, 20, 16}).x, 0.05) << integrator << ", " << sampler;
+      EXPECT_GT(mean_over(read_pfm(out), PixelRect{12, 8, 20, 16}).x, 0.05)
+          << integrator << ", " << sampler << "\n" << r.err;  // err names the tasks still missing
     }
 }
 

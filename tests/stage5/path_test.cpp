@@ -3,6 +3,7 @@
 #include "05-path-tracing/path_render.h"
 #include "04-radiometry/radiometry.h"
 #include "stage4/closed_form.h"
+#include "stage5/path_estimates.h"
 
 #include "support/test_support.h"
 
@@ -10,39 +11,6 @@
 
 namespace rt {
 namespace {
-
-struct Estimate {
-  double mean, standard_error;
-};
-
-// `paths` independent paths along one ray: mean and standard error of the red channel.
-Estimate estimate(const LightingScene& scene, const Ray& ray, const PathOptions& options, int paths,
-                  std::uint64_t seed = 1, int channel = 0) {
-  double sum = 0.0, sum2 = 0.0;
-  for (int k = 0; k < paths; ++k) {
-    Rng rng(seed, 0, std::uint64_t(k));
-    const double v = path_radiance(scene, ray, options, rng)[channel];
-    sum += v;
-    sum2 += v * v;
-  }
-  const double m = sum / paths;
-  return {m, std::sqrt(std::max(0.0, sum2 / paths - m * m) / paths)};
-}
-
-// A closed 2 x 2 x 2 box, every wall facing in, of albedo rho and emission Le.
-LightingScene furnace(float albedo, float emission) {
-  const std::string a = std::to_string(albedo), e = std::to_string(emission);
-  const std::string json = R"({"camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "vfov": 40},
-    "materials": {"wall": {"albedo": [)" + a + "," + a + "," + a + R"(], "emission": [)" + e + "," + e + "," + e + R"(]}},
-    "shapes": [
-      {"type": "quad", "material": "wall", "vertices": [[-1,-1,1], [1,-1,1], [1,-1,-1], [-1,-1,-1]]},
-      {"type": "quad", "material": "wall", "vertices": [[1,1,-1], [1,1,1], [-1,1,1], [-1,1,-1]]},
-      {"type": "quad", "material": "wall", "vertices": [[-1,1,-1], [-1,1,1], [-1,-1,1], [-1,-1,-1]]},
-      {"type": "quad", "material": "wall", "vertices": [[1,-1,1], [1,1,1], [1,1,-1], [1,-1,-1]]},
-      {"type": "quad", "material": "wall", "vertices": [[1,-1,-1], [1,1,-1], [-1,1,-1], [-1,-1,-1]]},
-      {"type": "quad", "material": "wall", "vertices": [[-1,1,1], [1,1,1], [1,-1,1], [-1,-1,1]]}]})";
-  return LightingScene(parse_scene(json, "furnace.json"));
-}
 
 TEST(Furnace, EveryIntegratorFindsLeOverOneMinusRho) {
   // A closed Lambertian enclosure: L = Le + rho L everywhere, so L = Le / (1 - rho) = 1 here. The

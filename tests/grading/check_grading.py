@@ -1,0 +1,143 @@
+#!/usr/bin/env python3
+"""The coursework tooling's proofs (issue: starter tree and grading). CI runs it after the test
+suite; it takes about half an hour on 2 cores, most of it building trees.
+
+    tests/grading/check_grading.py WORK
+
+ 1. The starter tree (tools/make_starter.py) configures and builds warning-free with the README's
+    commands (the release preset has -Werror).
+ 2. Graded with tools/grade.py it scores zero; every graded test fails with a message that names a
+    task; no test crashes or runs into its time limit; every render check's program still writes
+    an image.
+ 3. This tree scores full marks.
+ 4. Each planted bug (a wrong sign in the sphere quadratic, a BVH that skips the far child, a
+    missing 1/pdf) loses exactly the points of the tests that cover it: the failed tests are
+    exactly the ones listed for it below, and the points lost are theirs.
+Exits 1 with one line per broken promise.
+"""
+import fnmatch
+import re
+import json
+import pathlib
+import shutil
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+TASK_NAMED = re.compile(r"stage\d\.[a-z0-9_*]+\.[a-z0-9_*]+")  # what a failure must mention
+PYTHON = sys.executable
+
+# Each bug: the task, the file, the correct line and the broken one, and every test (or render
+# check) that covers it, as globs over the grader's test names ("render:" + check name for renders).
+PLANTED_BUGS = [
+    {"task": "stage1.sphere.textbook", "file": "stages/01-ray-casting/sphere_intersection.cpp",
+     "old": "  const float b = 2.0f * glm::dot(f, ray.direction);",
+     "new": "  const float b = -2.0f * glm::dot(f, ray.direction);",
+     "covered_by": ["Sphere/BothSphereForms.*/textbook", "HiddenSphere.*"]},
+    {"task": "stage3.bvh.closest_hit", "file": "stages/03-acceleration/bvh_traversal.h",
+     "old": "        stack[stack_size++] = first_is_nearer ? Entry{second, *t_second} : Entry{first, *t_first};\n",
+     "new": "",
+     "covered_by": ["BvhAgainstNaive.*", "Bvh/Builders.AgreeWithTheSahTreeOnTheBunny/*", "Bvh/Builders.AnyHitAgreesWithClosestHit/*",
+                    "HiddenBvh.*", "render:bunny"]},
+    {"task": "stage4.direct.light_sampling", "file": "stages/04-radiometry/direct_lighting.cpp",
+     "old": "  result.value = f * le * (result.wi.z / result.pdf);",
+     "new": "  result.value = f * le * result.wi.z;",
+     "covered_by": ["DirectClosedForm.*", "DirectEstimators.*", "DirectDelta.*", "render:Cornell box, direct light*",
+                    # stage 5's path tracer samples the lights through it
+                    "Furnace.*", "PathClosedForm.*", "CornellBox.*", "RussianRoulette.*", "HiddenFurnace.*",
+                    "render:Cornell box, path traced*"]},
+]
+
+
+def run(command, cwd=None):
+    print("$", " ".join(map(str, command)), flush=True)
+    return subprocess.run(command, cwd=cwd).returncode
+
+
+def grade(tree, out, work):
+    """Grades `tree`; returns (results.json, outcomes.json) as dictionaries."""
+    if run([PYTHON, ROOT / "tools" / "grade.py", tree, "--out", out, "--work", work]) != 0:
+        raise SystemExit(f"check_grading: grading {tree} failed to run")
+    out = pathlib.Path(out)
+    return json.loads((out / "results.json").read_text()), json.loads((out / "outcomes.json").read_text())
+
+
+def failures_and_points(outcomes):
+    """The failed tests (and "render:" + name for failed render checks), each with its points."""
+    per_test = {(g["stage"], g["tests"]): g["points"] / g["count"] for g in outcomes["groups"] if g["count"]}
+    failed = {t["name"]: per_test.get((t["stage"], t["group"]), 0.0) for t in outcomes["tests"] if not t["passed"]}
+    failed.update({"render:" + r["name"]: r["points"] for r in outcomes["renders"] if r["score"] < r["points"]})
+    return failed
+
+
+def check_starter(work, problems):
+    starter = work / "starter"
+    shutil.rmtree(starter, ignore_errors=True)
+    if run([PYTHON, ROOT / "tools" / "make_starter.py", starter]) != 0:
+        problems.append("make_starter.py failed")
+        return
+    # The README's commands, in the starter tree: configure and build with warnings as errors.
+    if run(["cmake", "--preset", "release"], cwd=starter) != 0 or run(["cmake", "--build", "--preset", "release"], cwd=starter) != 0:
+        problems.append("the starter tree does not build warning-free with cmake --preset release")
+        return
+    results, outcomes = grade(starter, work / "starter-report", work / "starter-grade")
+    if results["score"] != 0:
+        problems.append(f"the starter tree scores {results['score']}, not 0")
+    for render in outcomes["renders"]:
+        if any(s in p for p in render["problems"] for s in ("exited with", "wrote no readable image", "was not built", "ran longer")):
+            problems.append(f"starter: render {render['name']}: the program wrote no image: {render['problems'][0]}")
+    timeout = json.loads((ROOT / "grading" / "manifest.json").read_text())["test_timeout_seconds"]
+    for test in outcomes["tests"]:
+        if any(s in test["output"] for s in ("Timeout", "SEGFAULT", "Subprocess aborted", "Child aborted")) or \
+                test["seconds"] >= timeout:
+            problems.append(f"starter: {test['name']}: crashed or ran into its time limit")
+        if test["group"] and not test["passed"] and not TASK_NAMED.search(test["output"]):
+            problems.append(f"starter: {test['name']}: fails without naming a task")
+
+
+def check_full_and_bugs(work, problems):
+    full, full_outcomes = grade(ROOT, work / "full-report", work / "bug-grade")
+    possible = sum(t["max_score"] for t in full["tests"])
+    if full["score"] != possible:
+        problems.append(f"the full tree scores {full['score']} of {possible}: {sorted(failures_and_points(full_outcomes))}")
+    for bug in PLANTED_BUGS:
+        tree = work / "bug-tree"
+        shutil.rmtree(tree, ignore_errors=True)
+        shutil.copytree(ROOT, tree, ignore=shutil.ignore_patterns(".git", "build", "__pycache__"))
+        path = tree / bug["file"]
+        text = path.read_text()
+        if text.count(bug["old"]) != 1:
+            problems.append(f"{bug['file']}: the line to break for {bug['task']} is not there once")
+            continue
+        path.write_text(text.replace(bug["old"], bug["new"]))
+        # The full tree's work folder: only what the bug touches is rebuilt.
+        results, outcomes = grade(tree, work / "bug-report", work / "bug-grade")
+        failed = failures_and_points(outcomes)
+        if not failed:
+            problems.append(f"{bug['task']}: the planted bug loses no points")
+        for name in sorted(failed):
+            if not any(fnmatch.fnmatchcase(name, g) for g in bug["covered_by"]):
+                problems.append(f"{bug['task']}: {name} failed, but is not among the tests that cover the task")
+        lost, expected = full["score"] - results["score"], sum(failed.values())
+        if abs(lost - expected) > 0.02:
+            problems.append(f"{bug['task']}: lost {lost:g} points, but its failed tests are worth {expected:g}")
+        print(f"check_grading: {bug['task']}: {len(failed)} tests failed, {lost:g} points lost", flush=True)
+
+
+def main():
+    if len(sys.argv) != 2:
+        print("usage: check_grading.py WORK", file=sys.stderr)
+        return 2
+    work = pathlib.Path(sys.argv[1]).resolve()
+    work.mkdir(parents=True, exist_ok=True)
+    problems = []
+    check_starter(work, problems)
+    check_full_and_bugs(work, problems)
+    for problem in problems:
+        print(f"check_grading: {problem}")
+    print(f"check_grading: {len(problems)} problems")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
