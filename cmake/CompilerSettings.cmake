@@ -21,5 +21,16 @@ if(RT_SANITIZE)
   target_link_options(rt_flags INTERFACE ${rt_sanitizers})
 endif()
 
+if(RT_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "RT_FUZZ needs clang (libFuzzer): use the preset fuzz")
+  endif()
+  # Coverage instrumentation for every target, so the fuzzer is guided through common/ as well;
+  # the fuzz targets themselves link -fsanitize=fuzzer (tests/fuzz/CMakeLists.txt).
+  set(rt_fuzz_flags -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
+  target_compile_options(rt_flags INTERFACE ${rt_fuzz_flags})
+  target_link_options(rt_flags INTERFACE -fsanitize=address,undefined)
+endif()
+
 find_package(Threads REQUIRED)
 target_link_libraries(rt_flags INTERFACE Threads::Threads)

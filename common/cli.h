@@ -23,8 +23,19 @@ struct CommonOptions {
   int threads = 0;  // 0 = all cores
 
   // The scene's render block with the command-line values put over it.
+  // Throws InputError (naming the output file, with the figures) for an image this machine could
+  // not hold: see check_image_fits.
   RenderSettings settings_for(const SceneDescription& scene) const;
 };
+
+// Refuses, before anything is allocated, an image of more than 2^31 - 1 pixels or one whose
+// memory (kBytesPerPixel: the radiance, 12 bytes, and the encoded file, up to 12 more) exceeds
+// `physical_bytes`, the machine's memory. Throws InputError "OUT: a WxH image needs ..., this
+// machine has ...".
+inline constexpr std::uint64_t kBytesPerPixel = 24;
+void check_image_fits(const std::string& out, int width, int height, std::uint64_t physical_bytes);
+// The machine's physical memory in bytes (sysconf).
+std::uint64_t physical_memory_bytes();
 
 // --max-depth, for the stage programs that follow rays recursively (stage 2 on).
 void add_max_depth_flag(CLI::App& app, CommonOptions& options);

@@ -17,6 +17,12 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A render stopped by SIGINT or SIGTERM (common/interrupt.h), after its partial image was written.
+// Exit code 128 + the signal's number, as a shell reports a process the signal ended.
+struct Interrupted {
+  int signal_number;
+};
+
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitBadInput = 1;
 inline constexpr int kExitBadUsage = 2;

@@ -1,6 +1,7 @@
 #include "common/file_io.h"
 
 #include "common/error.h"
+#include "common/interrupt.h"
 
 #include <unistd.h>
 
@@ -8,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 
 namespace rt {
 namespace fs = std::filesystem;
@@ -19,6 +21,24 @@ fs::path directory_of(const fs::path& path) {
 }
 
 }  // namespace
+
+std::string read_input_file(const fs::path& path, const std::string& what, std::uintmax_t max_bytes) {
+  const std::string name = path.string();
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) throw InputError(name + ": cannot open " + what);
+  if (!fs::is_regular_file(status)) throw InputError(name + ": cannot read " + what + ": not a regular file");
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (!ec && size > max_bytes)
+    throw InputError(name + ": " + what + " of " + std::to_string(size) + " bytes, more than the " +
+                     std::to_string(max_bytes) + " this program reads");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(name + ": cannot open " + what);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(name + ": cannot read " + what);
+  return text.str();
+}
 
 void check_output_writable(const fs::path& path) {
   const fs::path dir = directory_of(path);
@@ -39,6 +59,10 @@ void write_file_atomically(const fs::path& path, const std::vector<char>& bytes)
   // write into each other's temporary file.
   fs::path temporary = path;
   temporary += ".tmp" + std::to_string(::getpid());
+  set_pending_temporary(temporary);  // an immediate exit (a second Ctrl-C) removes it
+  struct Clear {
+    ~Clear() { clear_pending_temporary(); }
+  } clear;
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (out) out.write(bytes.data(), std::streamsize(bytes.size()));

@@ -5,6 +5,7 @@
 #include "common/obj_loader.h"
 
 #include "common/error.h"
+#include "common/file_io.h"
 
 #include <tiny_obj_loader.h>
 
@@ -102,14 +103,10 @@ ObjLines scan_lines(const std::string& text, const std::string& file) {
 }  // namespace
 
 TriangleMesh load_obj(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(file + ": cannot open mesh file");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw InputError(file + ": cannot read mesh file");
-  const std::string text = buffer.str();
+  return parse_obj(read_input_file(path, "mesh file", kMaxMeshFileBytes), path.string());
+}
 
+TriangleMesh parse_obj(const std::string& text, const std::string& file) {
   const ObjLines lines = scan_lines(text, file);
 
   tinyobj::ObjReaderConfig config;

@@ -136,12 +136,15 @@ struct SceneDescription {
 // Mesh files are read too, relative to the scene file's folder; their errors name the OBJ file and
 // line (common/obj_loader.h).
 SceneDescription load_scene(const std::filesystem::path& path);
+// A scene file is a page of JSON; anything over 64 MiB is not one.
+inline constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t(64) << 20;
 // The same from text already in memory; `source` names it in messages.
 SceneDescription parse_scene(const std::string& text, const std::string& source);
 
-// Largest image side and spp accepted from a scene or the command line: refuses sizes that could
-// not be allocated on the course machines before any memory is spent.
-inline constexpr int kMaxImageSide = 16384;
+// Largest image side and spp accepted from a scene or the command line. The side is only a bound
+// against overflow; whether this machine can hold the image is checked against its memory before
+// anything is allocated (check_image_fits in common/cli.h).
+inline constexpr int kMaxImageSide = 1 << 20;
 inline constexpr int kMaxSpp = 1 << 20;
 
 }  // namespace rt

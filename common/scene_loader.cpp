@@ -1,6 +1,7 @@
 // Reading scene files. Every check names the file and the JSON path (RFC 6901 pointer) of what is
 // wrong, because a student's first scene will have a typo in it.
 #include "common/error.h"
+#include "common/file_io.h"
 #include "common/obj_loader.h"
 #include "common/scene.h"
 
@@ -347,12 +348,7 @@ SceneDescription parse_scene(const std::string& text, const std::string& source)
 }
 
 SceneDescription load_scene(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string() + ": cannot open scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(path.string() + ": cannot read scene file");
-  return parse_scene(text.str(), path.string());
+  return parse_scene(read_input_file(path, "scene file", kMaxSceneFileBytes), path.string());
 }
 
 }  // namespace rt

@@ -6,10 +6,13 @@
 #include "01-ray-casting/ray_caster.h"
 #include "01-ray-casting/render.h"
 #include "common/cli.h"
+#include "common/error.h"
+#include "common/interrupt.h"
 #include "common/image_io.h"
 #include "common/progress.h"
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 
 namespace rt {
@@ -30,9 +33,18 @@ void render_with_progress_and_write(const char* program, const CommonOptions& op
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (view == DebugView::depth && image_format_for(options.out) == ImageFormat::png) scale_depth_for_png(image);
   write_image(options.out, image);
+  const std::uint64_t asked = std::uint64_t(image.pixel_count()) * std::uint64_t(settings.spp);
+  if (interrupt_requested()) {
+    std::printf("%s: interrupted by %s: wrote %s with %s of %s samples (%.1f%%), each pixel the mean of "
+                "the samples it finished, black where none\n",
+                program, interrupt_signal() == SIGINT ? "Ctrl-C" : "SIGTERM", options.out.c_str(),
+                format_si(double(progress.done())).c_str(), format_si(double(asked)).c_str(),
+                100.0 * double(progress.done()) / double(asked));
+    throw Interrupted{interrupt_signal()};
+  }
   std::printf("%s: wrote %s (%dx%d, %d spp) in %.2f s, %ssamples/s\n", program, options.out.c_str(),
               settings.width, settings.height, settings.spp, seconds,
-              format_si(double(image.pixel_count()) * settings.spp / seconds).c_str());
+              format_si(double(asked) / seconds).c_str());
 }
 
 template <class SamplerType = Rng, class RadianceFn>

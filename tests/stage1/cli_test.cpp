@@ -56,7 +56,7 @@ TEST(Stage1Cli, BadUsageExitsWithTwo) {
   expect_one_line_error(run_command(stage1("--scene " + kSpheres + out + " --frobnicate"), dir), 2, "frobnicate");
   expect_one_line_error(run_command(stage1("--scene " + kSpheres + out + " --spp 0"), dir), 2, "--spp");
   expect_one_line_error(run_command(stage1("--scene " + kSpheres + out + " --spp -3"), dir), 2, "--spp");
-  expect_one_line_error(run_command(stage1("--scene " + kSpheres + out + " --width 100000"), dir), 2, "--width");
+  expect_one_line_error(run_command(stage1("--scene " + kSpheres + out + " --width 2000000"), dir), 2, "--width");
   expect_one_line_error(run_command(stage1("--scene " + kSpheres + out + " --height 0"), dir), 2, "--height");
   expect_one_line_error(run_command(stage1("--scene " + kSpheres + out + " --spp many"), dir), 2, "--spp");
   expect_one_line_error(run_command(stage1(out), dir), 2, "--scene");
