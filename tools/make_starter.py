@@ -73,9 +73,16 @@ def strip_file(path, stages, problems, handouts):
 
 
 def tracked_files(root):
-    listing = subprocess.run(["git", "-C", str(root), "ls-files", "-co", "--exclude-standard", "-z"],
-                             check=True, capture_output=True, text=True).stdout
-    return [f for f in listing.split("\0") if f and not f.startswith(INSTRUCTOR_ONLY)]
+    """The files git tracks or would track; outside a git checkout (an unpacked archive), every
+    file but build outputs."""
+    try:
+        listing = subprocess.run(["git", "-C", str(root), "ls-files", "-co", "--exclude-standard", "-z"],
+                                 check=True, capture_output=True, text=True).stdout.split("\0")
+    except (OSError, subprocess.CalledProcessError):
+        skipped = {".git", "build", "out", "__pycache__"}
+        listing = [p.relative_to(root).as_posix() for p in root.rglob("*")
+                   if p.is_file() and not skipped & set(p.relative_to(root).parts)]
+    return [f for f in listing if f and not f.startswith(INSTRUCTOR_ONLY)]
 
 
 def make_starter(root, dest, stages):
