@@ -2,7 +2,7 @@
 """The coursework tooling's proofs (issue: starter tree and grading). CI runs it after the test
 suite; it takes about half an hour on 2 cores, most of it building trees.
 
-    tests/grading/check_grading.py WORK
+    tests/grading/check_grading.py WORK     (a folder outside the repository)
 
  1. The starter tree (tools/make_starter.py) configures and builds warning-free with the README's
     commands (the release preset has -Werror).
