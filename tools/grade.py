@@ -22,6 +22,12 @@ import sys
 import tempfile
 import time
 
+try:
+    import numpy  # noqa: F401  (the render checks' statistics)
+except ModuleNotFoundError:
+    sys.exit(f"tools/grade.py: this Python ({sys.executable}) has no numpy; run the grader with "
+             "Debian's /usr/bin/python3, which has it once tools/setup.sh installed python3-numpy")
+
 from grading import build, manifest, renders, report
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
