@@ -4,12 +4,16 @@
 #include "common/file_io.h"
 #include "common/image_io.h"
 #include "common/interrupt.h"
+#include "common/sample_batch.h"
 
 #include <unistd.h>
 
 #include <cstdio>
 #include <exception>
 #include <limits>
+#include <set>
+#include <utility>
+#include <vector>
 
 namespace rt {
 
@@ -20,8 +24,56 @@ RenderSettings CommonOptions::settings_for(const SceneDescription& scene) const 
   if (height) s.height = *height;
   if (seed) s.seed = *seed;
   if (max_depth) s.max_depth = *max_depth;
-  check_image_fits(out, s.width, s.height, physical_memory_bytes());
+  if (sample_range) {
+    const SampleRangeFlag range = parse_sample_range(*sample_range);
+    s.first_sample = range.first;
+    s.spp = range.count;
+  }
+  if (crop) s.crop = parse_crop(*crop, s.width, s.height);
+  check_image_fits(out, s.window().width(), s.window().height(), physical_memory_bytes());
   return s;
+}
+
+namespace {
+
+// A non-negative decimal integer up to `max`, the whole of `text`.
+std::optional<int> parse_count(const std::string& text, int max) {
+  if (text.empty() || text.size() > 9 || text.find_first_not_of("0123456789") != std::string::npos) return {};
+  const int value = std::stoi(text);
+  if (value > max) return {};
+  return value;
+}
+
+// "a:b" as two numbers up to `max`.
+std::optional<std::pair<int, int>> parse_span(const std::string& text, int max) {
+  const size_t colon = text.find(':');
+  if (colon == std::string::npos) return {};
+  const auto a = parse_count(text.substr(0, colon), max), b = parse_count(text.substr(colon + 1), max);
+  if (!a || !b) return {};
+  return std::pair(*a, *b);
+}
+
+}  // namespace
+
+SampleRangeFlag parse_sample_range(const std::string& text) {
+  const auto span = parse_span(text, kMaxSpp);
+  if (!span) throw UsageError("--sample-range " + text + ": expected a:b, two whole numbers up to " + std::to_string(kMaxSpp));
+  if (span->first >= span->second)
+    throw UsageError("--sample-range " + text + ": the range a:b holds samples a to b - 1, so a must be less than b");
+  return {span->first, span->second - span->first};
+}
+
+PixelRect parse_crop(const std::string& text, int width, int height) {
+  const size_t comma = text.find(',');
+  const auto x = comma == std::string::npos ? std::nullopt : parse_span(text.substr(0, comma), kMaxImageSide);
+  const auto y = comma == std::string::npos ? std::nullopt : parse_span(text.substr(comma + 1), kMaxImageSide);
+  if (!x || !y) throw UsageError("--crop " + text + ": expected x0:x1,y0:y1, four whole numbers");
+  if (x->first >= x->second || y->first >= y->second)
+    throw UsageError("--crop " + text + ": the window [x0, x1) x [y0, y1) is empty");
+  if (x->second > width || y->second > height)
+    throw UsageError("--crop " + text + ": the window reaches beyond the " + std::to_string(width) + "x" +
+                     std::to_string(height) + " image");
+  return {x->first, y->first, x->second, y->second};
 }
 
 namespace {
@@ -32,6 +84,35 @@ std::string binary_size(double bytes) {
   for (; bytes >= 1024.0 && unit < 5; ++unit) bytes /= 1024.0;
   char text[32];
   std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", bytes, units[unit]);
+  return text;
+}
+
+// Each of the stage's own flags with its default as text (CLI11 turns a value into the same text
+// whether it was typed or is the default, e.g. an enum's number), taken before parsing; the
+// defaults are then cleared again so that --help shows what it always showed.
+std::vector<std::pair<CLI::Option*, std::string>> stage_flag_defaults(CLI::App& app,
+                                                                      const std::set<std::string>& common) {
+  std::vector<std::pair<CLI::Option*, std::string>> flags;
+  for (CLI::Option* option : app.get_options()) {
+    if (common.count(option->get_name())) continue;
+    const std::string shown = option->get_default_str();
+    option->capture_default_str();
+    flags.emplace_back(option, option->get_items_expected_max() == 0 ? "false" : option->get_default_str());
+    option->default_str(shown);
+  }
+  return flags;
+}
+
+std::string describe_flags(const std::vector<std::pair<CLI::Option*, std::string>>& flags) {
+  std::string text;
+  for (const auto& [option, default_value] : flags) {
+    std::string value = default_value;
+    if (option->count() > 0) {
+      value.clear();
+      for (const std::string& r : option->results()) value += (value.empty() ? "" : ",") + r;
+    }
+    text += (text.empty() ? "" : " ") + option->get_name() + "=" + value;
+  }
   return text;
 }
 
@@ -67,10 +148,12 @@ int run_stage_program(int argc, char** argv, const std::string& program, const s
   CLI::App app(title, program);
   app.add_option("--scene", options.scene, "Scene file (JSON, see docs/scene-format.md)")
       ->required();
-  app.add_option("--out", options.out, "Output image; the ending picks the format: .png or .pfm")
+  app.add_option("--out", options.out,
+                 "Output; the ending picks the format: .png or .pfm (the image), or .json (a sample batch "
+                 "for merge: the undivided sums and counts, see docs/scale-out.md)")
       ->required();
-  app.add_option("--spp", options.spp, "Samples per pixel (default: the scene's)")
-      ->check(CLI::Range(1, kMaxSpp));
+  CLI::Option* spp = app.add_option("--spp", options.spp, "Samples per pixel (default: the scene's)")
+                         ->check(CLI::Range(1, kMaxSpp));
   app.add_option("--width", options.width, "Image width in pixels (default: the scene's)")
       ->check(CLI::Range(1, kMaxImageSide));
   app.add_option("--height", options.height, "Image height in pixels (default: the scene's)")
@@ -84,7 +167,15 @@ int run_stage_program(int argc, char** argv, const std::string& program, const s
             return value.find('-') == std::string::npos ? std::string() : "a seed is a non-negative integer";
           },
           "UINT"));
+  app.add_option("--sample-range", options.sample_range,
+                 "Render samples a to b - 1 of each pixel (a:b), e.g. one batch of a render split "
+                 "across machines")
+      ->excludes(spp);
+  app.add_option("--crop", options.crop, "Render only the pixels [x0, x1) x [y0, y1) (x0:x1,y0:y1), e.g. one tile");
+  const std::set<std::string> common_flags = {"--help", "--scene", "--out", "--spp", "--width", "--height",
+                                              "--threads", "--seed", "--sample-range", "--crop", "--max-depth"};
   add_stage_flags(app);
+  const std::vector<std::pair<CLI::Option*, std::string>> stage_flags = stage_flag_defaults(app, common_flags);
 
   try {
     app.parse(argc, argv);
@@ -96,9 +187,11 @@ int run_stage_program(int argc, char** argv, const std::string& program, const s
     return kExitBadUsage;
   }
 
+  options.image_flags = describe_flags(stage_flags);
+
   InterruptHandler interrupt_handler;
   try {
-    image_format_for(options.out);
+    if (!is_batch_path(options.out)) image_format_for(options.out);
     check_output_writable(options.out);
     run();
     return kExitOk;

@@ -14,19 +14,36 @@
 
 namespace rt {
 
+// The first sample and the number of samples a --sample-range asks for.
+struct SampleRangeFlag {
+  int first = 0, count = 0;
+};
+
 struct CommonOptions {
   std::string scene;
-  std::string out;
+  std::string out;  // .png or .pfm: the image; .json: a sample batch (common/sample_batch.h)
   std::optional<int> spp, width, height;
   std::optional<std::uint64_t> seed;
   std::optional<int> max_depth;  // registered by the stages that recurse (add_max_depth_flag)
   int threads = 0;  // 0 = all cores
+  // Scale-out (docs/scale-out.md): "a:b" renders samples [a, b) of each pixel; "x0:x1,y0:y1" only
+  // the pixels [x0, x1) x [y0, y1).
+  std::optional<std::string> sample_range, crop;
+  // The stage's own flags that shape the image, "--name=value ..." with defaults filled in, set by
+  // run_stage_program: what a sample batch records so that only batches of one render merge.
+  std::string image_flags;
 
   // The scene's render block with the command-line values put over it.
-  // Throws InputError (naming the output file, with the figures) for an image this machine could
-  // not hold: see check_image_fits.
+  // Throws UsageError for a sample range or crop window that is malformed or outside the image,
+  // and InputError (naming the output file, with the figures) for an image this machine could not
+  // hold: see check_image_fits.
   RenderSettings settings_for(const SceneDescription& scene) const;
 };
+
+// "a:b" with 0 <= a < b <= kMaxSpp; "x0:x1,y0:y1" inside a width x height image with x0 < x1 and
+// y0 < y1. Throw UsageError naming the flag and the problem.
+SampleRangeFlag parse_sample_range(const std::string& text);
+PixelRect parse_crop(const std::string& text, int width, int height);
 
 // Refuses, before anything is allocated, an image of more than 2^31 - 1 pixels or one whose
 // memory (kBytesPerPixel: the radiance, 12 bytes, and the encoded file, up to 12 more) exceeds

@@ -9,11 +9,30 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 namespace rt {
 namespace fs = std::filesystem;
+
+namespace {
+
+// `rows` holds `channels` floats per pixel, top row first; PFM stores the BOTTOM row first.
+std::vector<char> encode_pfm_rows(int width, int height, int channels, const float* rows) {
+  static_assert(std::endian::native == std::endian::little, "PFM writer assumes little-endian");
+  std::ostringstream header;
+  header << (channels == 3 ? "PF\n" : "Pf\n") << width << ' ' << height << "\n-1.0\n";
+  const std::string head = header.str();
+  std::vector<char> bytes(head.begin(), head.end());
+  const size_t row_floats = size_t(width) * size_t(channels);
+  bytes.resize(head.size() + row_floats * sizeof(float) * size_t(height));
+  char* out = bytes.data() + head.size();
+  for (int y = height - 1; y >= 0; --y, out += row_floats * sizeof(float))
+    std::memcpy(out, rows + size_t(y) * row_floats, row_floats * sizeof(float));
+  return bytes;
+}
+
+}  // namespace
 
 ImageFormat image_format_for(const fs::path& path) {
   const std::string ext = path.extension().string();
@@ -48,24 +67,20 @@ std::vector<char> encode_png(const Image& image) {
 }
 
 std::vector<char> encode_pfm(const Image& image) {
-  static_assert(std::endian::native == std::endian::little, "PFM writer assumes little-endian");
-  std::ostringstream header;
-  header << "PF\n" << image.width() << ' ' << image.height() << "\n-1.0\n";
-  const std::string head = header.str();
-  std::vector<char> bytes(head.begin(), head.end());
-  const size_t row_bytes = size_t(image.width()) * 3 * sizeof(float);
-  bytes.resize(head.size() + row_bytes * size_t(image.height()));
-  char* out = bytes.data() + head.size();
-  // PFM stores the BOTTOM row first; our row 0 is the top.
-  for (int y = image.height() - 1; y >= 0; --y, out += row_bytes)
-    std::memcpy(out, &image.at(0, y), row_bytes);
-  return bytes;
+  return encode_pfm_rows(image.width(), image.height(), 3, &image.pixels().data()->r);
+}
+
+std::vector<char> encode_pfm_grey(int width, int height, const std::vector<float>& values) {
+  if (values.size() != size_t(width) * size_t(height)) throw std::invalid_argument("encode_pfm_grey: wrong size");
+  return encode_pfm_rows(width, height, 1, values.data());
 }
 
 Image read_pfm(const fs::path& path) {
-  const std::string name = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(name + ": cannot open file");
+  return decode_pfm(read_input_file(path, "PFM image", kMaxPfmFileBytes), path.string());
+}
+
+Image decode_pfm(const std::string& bytes, const std::string& name) {
+  std::istringstream in(bytes);
   std::string magic;
   long long width = 0, height = 0;
   double scale = 0.0;

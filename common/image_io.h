@@ -7,7 +7,9 @@
 
 #include "common/image.h"
 
+#include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace rt {
@@ -21,8 +23,15 @@ void write_image(const std::filesystem::path& path, const Image& image);
 
 std::vector<char> encode_png(const Image& image);
 std::vector<char> encode_pfm(const Image& image);
+// One channel ("Pf"), `values` row by row from the top: a sample-count image (common/sample_batch.h).
+std::vector<char> encode_pfm_grey(int width, int height, const std::vector<float>& values);
 
-// Reads colour ("PF") and greyscale ("Pf") PFM files of either byte order.
+// Reads colour ("PF") and greyscale ("Pf", returned grey: r = g = b) PFM files of either byte
+// order, up to 65536 pixels a side.
 Image read_pfm(const std::filesystem::path& path);
+// The same from the file's bytes already in memory; `name` names it in messages.
+Image decode_pfm(const std::string& bytes, const std::string& name);
+inline constexpr std::uintmax_t kMaxPfmFileBytes = std::uintmax_t(1) << 36;  // 65536^2 RGB floats
+
 
 }  // namespace rt

@@ -6,10 +6,6 @@
 
 namespace rt {
 
-struct PixelRect {
-  int x0, y0, x1, y1;  // the half-open rectangle [x0, x1) x [y0, y1)
-};
-
 // Mean squared error: mean of (a - b)^2.
 double mse(const Image& image, const Image& reference);
 double rmse(const Image& image, const Image& reference);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "common/camera.h"
+#include "common/image.h"
 #include "common/math.h"
 #include "common/transform.h"
 #include "common/triangle_mesh.h"
@@ -29,6 +30,14 @@ struct RenderSettings {
   std::uint64_t seed = 0;
   int max_depth = 5;               // recursion / path depth limit for the later stages
   bool pixel_center_only = false;  // one ray through each pixel centre instead of area samples
+
+  // Scale-out (docs/scale-out.md): a run takes samples [first_sample, first_sample + spp) of each
+  // pixel, so batches rendered apart add up to one render; and only the pixels of `crop` when set.
+  int first_sample = 0;
+  std::optional<PixelRect> crop;
+
+  // The pixels this run renders: the crop window, or the whole image.
+  PixelRect window() const { return crop ? *crop : PixelRect{0, 0, width, height}; }
 };
 
 // A solid 3D checkerboard: cubes of side `size`, centred on the origin, alternate between the

@@ -1,5 +1,13 @@
 #include "01-ray-casting/program.h"
 
+#include "common/error.h"
+#include "common/image_io.h"
+#include "common/interrupt.h"
+#include "common/sample_batch.h"
+
+#include <csignal>
+#include <cstdio>
+
 namespace rt {
 
 void scale_depth_for_png(Image& image) {
@@ -7,6 +15,63 @@ void scale_depth_for_png(Image& image) {
   for (const Color& c : image.pixels()) farthest = std::max(farthest, c.r);
   if (farthest > 0.0f)
     for (Color& c : image.pixels()) c /= farthest;
+}
+
+namespace {
+
+// "256x256, 16 spp", or for part of a render "pixels 0:64,0:64 of 256x256, samples 16:32".
+std::string describe_part(const RenderSettings& s) {
+  const PixelRect window = s.window();
+  const bool whole_image = window == PixelRect{0, 0, s.width, s.height};
+  const std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
+  std::string text = whole_image ? size : "pixels " + format_rect(window) + " of " + size;
+  if (s.first_sample == 0) return text + ", " + std::to_string(s.spp) + " spp";
+  return text + ", samples " + format_range({s.first_sample, s.first_sample + s.spp});
+}
+
+SampleBatch batch_of(const char* program, const CommonOptions& options, const std::string& scene,
+                     const SceneDescription& description, const RenderSettings& s, const SampleSums& sums) {
+  SampleBatch batch;
+  batch.file = options.out;
+  batch.identity = {program,
+                    scene,
+                    scene_fingerprint(scene, description),
+                    options.image_flags + " --max-depth=" + std::to_string(s.max_depth),
+                    s.width,
+                    s.height,
+                    s.seed};
+  batch.window = s.window();
+  batch.pieces = {{s.window(), {s.first_sample, s.first_sample + s.spp}}};
+  batch.interrupted = interrupt_requested();
+  batch.sums = sums;
+  return batch;
+}
+
+}  // namespace
+
+void write_render(const char* program, const CommonOptions& options, const std::string& scene,
+                  const SceneDescription& description, const RenderSettings& settings, DebugView view,
+                  const SampleSums& sums, double seconds) {
+  const bool batch = is_batch_path(options.out);
+  if (batch) {
+    write_sample_batch(batch_of(program, options, scene, description, settings, sums));
+  } else {
+    Image image = sums.mean();
+    if (view == DebugView::depth && image_format_for(options.out) == ImageFormat::png) scale_depth_for_png(image);
+    write_image(options.out, image);
+  }
+  const std::uint64_t asked = std::uint64_t(settings.window().area()) * std::uint64_t(settings.spp);
+  const std::uint64_t done = sums.total_count();
+  if (interrupt_requested()) {
+    std::printf("%s: interrupted by %s: wrote %s with %s of %s samples (%.1f%%), %s\n", program,
+                interrupt_signal() == SIGINT ? "Ctrl-C" : "SIGTERM", options.out.c_str(),
+                format_si(double(done)).c_str(), format_si(double(asked)).c_str(), 100.0 * double(done) / double(asked),
+                batch ? "marked interrupted (merge --partial takes it)"
+                      : "each pixel the mean of the samples it finished, black where none");
+    throw Interrupted{interrupt_signal()};
+  }
+  std::printf("%s: wrote %s%s (%s) in %.2f s, %ssamples/s\n", program, batch ? "sample batch " : "",
+              options.out.c_str(), describe_part(settings).c_str(), seconds, format_si(double(asked) / seconds).c_str());
 }
 
 }  // namespace rt

@@ -98,7 +98,7 @@ int main(int argc, char** argv) {
         whitted.max_depth = settings.max_depth;
         const PinholeCamera camera(description.camera, settings.width, settings.height);
         const auto render_start = std::chrono::steady_clock::now();
-        render_and_write("stage3", options, settings, camera, view, [&](const Ray& ray, Rng&) {
+        render_and_write("stage3", options, description, settings, camera, view, [&](const Ray& ray, Rng&) {
           return view == DebugView::none ? whitted_radiance(scene, ray, whitted) : whitted_debug(scene, ray, view);
         });
         const double render_seconds =

@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
         std::printf("stage4: %zu area emitters, %zu point lights\n", scene.emitters().size(),
                     scene.point_lights().size());
         const PinholeCamera camera(description.camera, settings.width, settings.height);
-        render_and_write("stage4", options, settings, camera, DebugView::none,
+        render_and_write("stage4", options, description, settings, camera, DebugView::none,
                          [&](const Ray& ray, Sampler& rng) { return direct_radiance(scene, ray, direct, rng); });
       });
 }

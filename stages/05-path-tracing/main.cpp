@@ -36,9 +36,11 @@ int main(int argc, char** argv) {
         const LightingScene scene(description, lighting);
         const PinholeCamera camera(description.camera, settings.width, settings.height);
         SampleGuard guard;
-        render_with_progress_and_write("stage5", options, settings, DebugView::none, [&](ProgressBar* progress) {
-          return render_paths(scene, camera, settings, path, sampler, options.threads, guard, progress);
-        });
+        render_with_progress_and_write("stage5", options, description, settings, DebugView::none,
+                                       [&](ProgressBar* progress) {
+                                         return render_path_samples(scene, camera, settings, path, sampler,
+                                                                    options.threads, guard, progress);
+                                       });
         if (guard.dropped() > 0)
           std::printf("stage5: %llu samples had NaN, infinite or negative radiance and were counted as black\n",
                       static_cast<unsigned long long>(guard.dropped()));

@@ -16,12 +16,18 @@ const char* integrator_name(PathIntegrator integrator) {
 
 const char* sampler_name(SamplerKind sampler) { return sampler == SamplerKind::sobol ? "sobol" : "independent"; }
 
+SampleSums render_path_samples(const LightingScene& scene, const PinholeCamera& camera,
+                               const RenderSettings& settings, const PathOptions& options, SamplerKind sampler,
+                               int threads, SampleGuard& guard, ProgressBar* progress) {
+  auto radiance = [&](const Ray& ray, Sampler& numbers) { return guard(path_radiance(scene, ray, options, numbers)); };
+  if (sampler == SamplerKind::sobol) return render_samples<SobolSampler>(camera, settings, threads, radiance, progress);
+  return render_samples<Rng>(camera, settings, threads, radiance, progress);
+}
+
 Image render_paths(const LightingScene& scene, const PinholeCamera& camera, const RenderSettings& settings,
                    const PathOptions& options, SamplerKind sampler, int threads, SampleGuard& guard,
                    ProgressBar* progress) {
-  auto radiance = [&](const Ray& ray, Sampler& numbers) { return guard(path_radiance(scene, ray, options, numbers)); };
-  if (sampler == SamplerKind::sobol) return render_image<SobolSampler>(camera, settings, threads, radiance, progress);
-  return render_image<Rng>(camera, settings, threads, radiance, progress);
+  return render_path_samples(scene, camera, settings, options, sampler, threads, guard, progress).mean();
 }
 
 }  // namespace rt

@@ -21,5 +21,10 @@ const char* sampler_name(SamplerKind sampler);           // independent, sobol
 Image render_paths(const LightingScene& scene, const PinholeCamera& camera, const RenderSettings& settings,
                    const PathOptions& options, SamplerKind sampler, int threads, SampleGuard& guard,
                    ProgressBar* progress = nullptr);
+// The same undivided, per pixel the sum and number of its paths (stage 1's render_samples), for a
+// program that writes sample batches.
+SampleSums render_path_samples(const LightingScene& scene, const PinholeCamera& camera,
+                               const RenderSettings& settings, const PathOptions& options, SamplerKind sampler,
+                               int threads, SampleGuard& guard, ProgressBar* progress = nullptr);
 
 }  // namespace rt

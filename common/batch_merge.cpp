@@ -1,0 +1,172 @@
+#include "common/batch_merge.h"
+
+#include "common/error.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace rt {
+namespace {
+
+std::string name_of(const SampleBatch& b) { return b.file.string(); }
+
+// Batches of one render agree on everything that shapes the image.
+void require_same_render(const SampleBatch& first, const SampleBatch& b) {
+  const RenderIdentity &x = first.identity, &y = b.identity;
+  auto refuse = [&](const std::string& what_b, const std::string& what_first) {
+    throw InputError(name_of(b) + ": " + what_b + ", but " + name_of(first) + " " + what_first +
+                     ": batches of different renders cannot be merged");
+  };
+  if (y.program != x.program) refuse("made by " + y.program, "by " + x.program);
+  if (y.scene_hash != x.scene_hash)
+    refuse("renders scene " + y.scene + " (fingerprint " + y.scene_hash + ")",
+           "renders " + x.scene + " (fingerprint " + x.scene_hash + ")");
+  if (y.width != x.width || y.height != x.height)
+    refuse("is of a " + std::to_string(y.width) + "x" + std::to_string(y.height) + " image",
+           "of a " + std::to_string(x.width) + "x" + std::to_string(x.height) + " one");
+  if (y.seed != x.seed) refuse("has seed " + std::to_string(y.seed), "has seed " + std::to_string(x.seed));
+  if (y.options != x.options) refuse("has options \"" + y.options + "\"", "has \"" + x.options + "\"");
+}
+
+struct PieceOf {
+  BatchPiece piece;
+  size_t batch;
+};
+
+// No two pieces may hold the same samples of the same pixel: that is a batch rendered or given twice.
+void require_disjoint(const std::vector<SampleBatch>& batches, const std::vector<PieceOf>& pieces) {
+  for (size_t i = 0; i < batches.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (std::filesystem::weakly_canonical(batches[i].file) == std::filesystem::weakly_canonical(batches[j].file))
+        throw InputError(name_of(batches[i]) + ": given twice");
+  for (size_t i = 0; i < pieces.size(); ++i)
+    for (size_t j = 0; j < i; ++j) {
+      const BatchPiece &a = pieces[i].piece, &b = pieces[j].piece;
+      const PixelRect shared = a.pixels.intersection(b.pixels);
+      if (shared.empty() || !a.samples.overlaps(b.samples)) continue;
+      const SampleRange both{std::max(a.samples.begin, b.samples.begin), std::min(a.samples.end, b.samples.end)};
+      throw InputError(name_of(batches[pieces[j].batch]) + " and " + name_of(batches[pieces[i].batch]) +
+                       " both hold samples " + format_range(both) + " of pixels " + format_rect(shared) +
+                       ": a batch was rendered or given twice");
+    }
+}
+
+// Names one pixel that lacks samples and the ranges of [0, spp) that no piece holds for it.
+void report_missing(const std::vector<PieceOf>& pieces, const std::vector<std::uint32_t>& expected,
+                    const PixelRect& image, int spp) {
+  size_t short_pixels = 0, first = expected.size();
+  for (size_t i = 0; i < expected.size(); ++i)
+    if (expected[i] < std::uint32_t(spp)) {
+      ++short_pixels;
+      first = std::min(first, i);
+    }
+  if (short_pixels == 0) return;
+  const int x = int(first % size_t(image.width())), y = int(first / size_t(image.width()));
+  std::vector<SampleRange> held;
+  for (const PieceOf& p : pieces)
+    if (p.piece.pixels.contains(x, y)) held.push_back(p.piece.samples);
+  std::sort(held.begin(), held.end(), [](const SampleRange& a, const SampleRange& b) { return a.begin < b.begin; });
+  std::string gaps;
+  int next = 0;
+  auto gap = [&](int begin, int end) {
+    if (begin < end) gaps += (gaps.empty() ? "" : ", ") + format_range({begin, end});
+  };
+  for (const SampleRange& r : held) {
+    gap(next, r.begin);
+    next = std::max(next, r.end);
+  }
+  gap(next, spp);
+  throw InputError("samples missing: " + std::to_string(short_pixels) + " of " + std::to_string(expected.size()) +
+                   " pixels have fewer than " + std::to_string(spp) + "; pixel (" + std::to_string(x) + ", " +
+                   std::to_string(y) + ") lacks samples " + gaps +
+                   ", which no batch holds (render them, or merge with --partial)");
+}
+
+}  // namespace
+
+MergeResult merge_batches(const std::vector<SampleBatch>& given, const MergeOptions& options) {
+  if (given.empty()) throw UsageError("no batches to merge");
+  // The order of summation is fixed by the batches, not by the command line.
+  std::vector<SampleBatch> batches = given;
+  auto first_sample = [](const SampleBatch& b) {
+    int first = std::numeric_limits<int>::max();
+    for (const BatchPiece& p : b.pieces) first = std::min(first, p.samples.begin);
+    return first;
+  };
+  std::stable_sort(batches.begin(), batches.end(), [&](const SampleBatch& a, const SampleBatch& b) {
+    return std::tuple(first_sample(a), a.window.y0, a.window.x0) < std::tuple(first_sample(b), b.window.y0, b.window.x0);
+  });
+
+  std::vector<PieceOf> pieces;
+  int last_end = 0;
+  for (size_t i = 0; i < batches.size(); ++i) {
+    require_same_render(batches[0], batches[i]);
+    if (batches[i].interrupted && !options.partial)
+      throw InputError(name_of(batches[i]) +
+                       ": interrupted before it finished its samples (render it again, or merge with --partial)");
+    for (const BatchPiece& p : batches[i].pieces) {
+      pieces.push_back({p, i});
+      last_end = std::max(last_end, p.samples.end);
+    }
+  }
+  const int spp = options.spp.value_or(last_end);
+  for (const PieceOf& p : pieces)
+    if (p.piece.samples.end > spp)
+      throw InputError(name_of(batches[p.batch]) + ": holds samples " + format_range(p.piece.samples) +
+                       ", beyond the " + std::to_string(spp) + " samples per pixel asked for");
+  require_disjoint(batches, pieces);
+
+  const RenderIdentity& id = batches[0].identity;
+  const PixelRect image{0, 0, id.width, id.height};
+  std::vector<BatchPiece> all_pieces;
+  for (const PieceOf& p : pieces) all_pieces.push_back(p.piece);
+  if (!options.partial) report_missing(pieces, expected_counts(image, all_pieces), image, spp);
+
+  PixelRect window = batches[0].window;
+  for (const SampleBatch& b : batches)
+    window = {std::min(window.x0, b.window.x0), std::min(window.y0, b.window.y0), std::max(window.x1, b.window.x1),
+              std::max(window.y1, b.window.y1)};
+  std::vector<DVec3> sum(window.area(), DVec3(0.0));
+  std::vector<std::uint32_t> count(window.area(), 0);
+  for (const SampleBatch& b : batches)
+    for (int y = 0; y < b.window.height(); ++y)
+      for (int x = 0; x < b.window.width(); ++x) {
+        const size_t i = size_t(b.window.y0 - window.y0 + y) * size_t(window.width()) + size_t(b.window.x0 - window.x0 + x);
+        sum[i] += DVec3(b.sums.sum(x, y));
+        count[i] += b.sums.count(x, y);
+      }
+
+  MergeResult result;
+  result.target_spp = spp;
+  SampleBatch& merged = result.merged;
+  merged.identity = id;
+  merged.window = window;
+  merged.pieces = std::move(all_pieces);
+  merged.interrupted = std::any_of(batches.begin(), batches.end(), [](const SampleBatch& b) { return b.interrupted; });
+  merged.sums = SampleSums(window.width(), window.height());
+  for (int y = 0; y < window.height(); ++y)
+    for (int x = 0; x < window.width(); ++x) {
+      const size_t i = size_t(y) * size_t(window.width()) + size_t(x);
+      merged.sums.set(x, y, Color(sum[i]), count[i]);
+    }
+
+  // Samples per pixel over the whole image: pixels outside the window have none.
+  const std::uint64_t total = merged.sums.total_count();
+  const bool window_is_image = window == image;
+  result.min_spp = window_is_image ? *std::min_element(count.begin(), count.end()) : 0;
+  result.max_spp = *std::max_element(count.begin(), count.end());
+  result.mean_spp = double(total) / double(image.area());
+  result.complete = result.min_spp == std::uint32_t(spp);
+  return result;
+}
+
+Image merged_image(const MergeResult& result) {
+  const SampleBatch& m = result.merged;
+  const Image window = m.sums.mean();
+  Image image(m.identity.width, m.identity.height);
+  for (int y = 0; y < window.height(); ++y)
+    for (int x = 0; x < window.width(); ++x) image.at(m.window.x0 + x, m.window.y0 + y) = window.at(x, y);
+  return image;
+}
+
+}  // namespace rt
