@@ -10,6 +10,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <set>
 #include <utility>
@@ -53,26 +54,50 @@ std::optional<std::pair<int, int>> parse_span(const std::string& text, int max) 
   return std::pair(*a, *b);
 }
 
+// Why `text` is not a sample range a:b, or "" when it is one.
+std::string sample_range_problem(const std::string& text) {
+  const auto span = parse_span(text, kMaxSpp);
+  if (!span) return "expected a:b, two whole numbers up to " + std::to_string(kMaxSpp);
+  if (span->first >= span->second) return "the range a:b holds samples a to b - 1, so a must be less than b";
+  return "";
+}
+
+// Why `text` is not a crop window x0:x1,y0:y1 inside a width x height image, or "".
+std::string crop_problem(const std::string& text, int width, int height) {
+  const size_t comma = text.find(',');
+  if (comma == std::string::npos) return "expected x0:x1,y0:y1, four whole numbers";
+  const auto x = parse_span(text.substr(0, comma), kMaxImageSide), y = parse_span(text.substr(comma + 1), kMaxImageSide);
+  if (!x || !y) return "expected x0:x1,y0:y1, four whole numbers";
+  if (x->first >= x->second || y->first >= y->second) return "the window [x0, x1) x [y0, y1) is empty";
+  if (x->second > width || y->second > height)
+    return "the window reaches beyond the " + std::to_string(width) + "x" + std::to_string(height) + " image";
+  return "";
+}
+
+// A CLI11 check of a flag's text: `problem(text)` says what is wrong, or "".
+CLI::Validator text_check(std::function<std::string(const std::string&)> problem, const char* form) {
+  return CLI::Validator(
+      [problem](std::string& text) {
+        const std::string why = problem(text);
+        return why.empty() ? why : text + ": " + why;
+      },
+      form);
+}
+
 }  // namespace
 
 SampleRangeFlag parse_sample_range(const std::string& text) {
+  if (const std::string why = sample_range_problem(text); !why.empty())
+    throw UsageError("--sample-range " + text + ": " + why);
   const auto span = parse_span(text, kMaxSpp);
-  if (!span) throw UsageError("--sample-range " + text + ": expected a:b, two whole numbers up to " + std::to_string(kMaxSpp));
-  if (span->first >= span->second)
-    throw UsageError("--sample-range " + text + ": the range a:b holds samples a to b - 1, so a must be less than b");
   return {span->first, span->second - span->first};
 }
 
 PixelRect parse_crop(const std::string& text, int width, int height) {
+  if (const std::string why = crop_problem(text, width, height); !why.empty())
+    throw UsageError("--crop " + text + ": " + why);
   const size_t comma = text.find(',');
-  const auto x = comma == std::string::npos ? std::nullopt : parse_span(text.substr(0, comma), kMaxImageSide);
-  const auto y = comma == std::string::npos ? std::nullopt : parse_span(text.substr(comma + 1), kMaxImageSide);
-  if (!x || !y) throw UsageError("--crop " + text + ": expected x0:x1,y0:y1, four whole numbers");
-  if (x->first >= x->second || y->first >= y->second)
-    throw UsageError("--crop " + text + ": the window [x0, x1) x [y0, y1) is empty");
-  if (x->second > width || y->second > height)
-    throw UsageError("--crop " + text + ": the window reaches beyond the " + std::to_string(width) + "x" +
-                     std::to_string(height) + " image");
+  const auto x = parse_span(text.substr(0, comma), kMaxImageSide), y = parse_span(text.substr(comma + 1), kMaxImageSide);
   return {x->first, y->first, x->second, y->second};
 }
 
@@ -167,11 +192,15 @@ int run_stage_program(int argc, char** argv, const std::string& program, const s
             return value.find('-') == std::string::npos ? std::string() : "a seed is a non-negative integer";
           },
           "UINT"));
+  // Their form is checked here, the crop's fit to the image once the scene's size is known.
   app.add_option("--sample-range", options.sample_range,
                  "Render samples a to b - 1 of each pixel (a:b), e.g. one batch of a render split "
                  "across machines")
+      ->check(text_check(sample_range_problem, "a:b"))
       ->excludes(spp);
-  app.add_option("--crop", options.crop, "Render only the pixels [x0, x1) x [y0, y1) (x0:x1,y0:y1), e.g. one tile");
+  app.add_option("--crop", options.crop, "Render only the pixels [x0, x1) x [y0, y1) (x0:x1,y0:y1), e.g. one tile")
+      ->check(text_check([](const std::string& t) { return crop_problem(t, kMaxImageSide, kMaxImageSide); },
+                         "x0:x1,y0:y1"));
   const std::set<std::string> common_flags = {"--help", "--scene", "--out", "--spp", "--width", "--height",
                                               "--threads", "--seed", "--sample-range", "--crop", "--max-depth"};
   add_stage_flags(app);

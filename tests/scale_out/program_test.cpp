@@ -102,6 +102,25 @@ TEST(ScaleOutPrograms, EveryStageSplitsIntoTilesAndSampleBatchesThatMergeIntoIts
   }
 }
 
+TEST(ScaleOutPrograms, BadRangesAndCropsAreOneLineUsageErrors) {
+  for (const StageProgram& p : kPrograms) {
+    ScratchDir dir;
+    const std::string out = " --out " + (dir / "out.json").string();
+    expect_one_line_error(run_command(command(p, "--sample-range 5:2" + out), dir), 2,
+                          "--sample-range: 5:2: the range a:b holds samples a to b - 1, so a must be less than b");
+    expect_one_line_error(run_command(command(p, "--sample-range 0:4 --spp 4" + out), dir), 2, "excludes");
+    expect_one_line_error(run_command(command(p, "--crop '0:4;0:4'" + out), dir), 2, "expected x0:x1,y0:y1");
+    // The crop's fit is checked against the image size the scene and the flags give.
+    expect_one_line_error(run_command(command(p, "--crop 0:33,0:24" + out), dir), 2,
+                          "--crop 0:33,0:24: the window reaches beyond the 32x24 image");
+    expect_one_line_error(run_command(command(p, "--out " + (dir / "out.txt").string()), dir), 2,
+                          "unknown image format '.txt'");
+    for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+      EXPECT_TRUE(entry.path().filename() == "stdout.txt" || entry.path().filename() == "stderr.txt")
+          << p.name << ": a refused run wrote " << entry.path();
+  }
+}
+
 class MergeProgram : public ::testing::Test {
  protected:
   // Stage 5 batches of samples 0:4, 4:10 and 10:16 of a 32x24 Cornell box, in dir/b0, b1, b2.
