@@ -10,7 +10,7 @@
 //   - batches that split a pixel's samples give it up to float summation order: one run adds its n
 //     samples one after the other in float; merged, each batch's samples are added so and the batch
 //     sums then in double. For non-negative radiance each way is within (n - 1) 2^-24 (relative)
-//     of the exact sum (Higham, "Accuracy and Stability of Numerical Algorithms", 2nd ed., eq. 4.4),
+//     of the exact sum (Higham, "Accuracy and Stability of Numerical Algorithms", 2nd ed., section 4.2),
 //     so the two images differ by at most about 2 (n + 1) 2^-24 relative per pixel.
 #pragma once
 

@@ -2,13 +2,15 @@
 """Collects the grader's Gradescope results (tools/grade.py --out DIR writes DIR/results.json) of a
 whole class into one table, as CSV and as HTML.
 
-    tools/class_table.py GRADES... [--csv FILE] [--html FILE]
+    tools/class_table.py GRADES... [--submissions DIR] [--csv FILE] [--html FILE]
 
 Each GRADES is a student's grade folder (holding results.json) or a folder of them, one
 sub-folder per student, as a job per student leaves them (docs/scale-out.md). The student is the
-folder's name. A student whose folder has no readable results.json (the grading job failed or has
-not run) gets a row that says so, and a line on stderr; the tables are still written whole, and the
-exit code is then 1 so that a scheduler's dependent job notices. Only the standard library is used.
+folder's name. With --submissions, every sub-folder of DIR is a student too, so that one whose
+grading job failed before it made a grade folder is not forgotten. A student without a readable
+results.json (the grading job failed or has not run) gets a row that says so, and a line on
+stderr; the tables are still written whole, and the exit code is then 1 so that a scheduler's
+dependent job notices. Only the standard library is used.
 """
 import argparse
 import csv
@@ -24,17 +26,27 @@ import urllib.parse
 STAGE = re.compile(r"^stage (\d+):")
 
 
-def student_folders(inputs):
-    """(student, folder) for every grade folder named on the command line or inside one."""
-    found = []
+def folder_or_exit(path):
+    if not path.is_dir():
+        raise SystemExit(f"class_table: error: {path}: not a folder")
+    return path
+
+
+def student_folders(inputs, submissions):
+    """(student, grade folder) for every grade folder named on the command line or inside one, and
+    for every student in `submissions` (a grade folder beside the others, which may not exist)."""
+    found = {}
     for given in map(pathlib.Path, inputs):
-        if not given.is_dir():
-            raise SystemExit(f"class_table: error: {given}: not a folder")
-        if (given / "results.json").exists():
-            found.append((given.name, given))
+        if (folder_or_exit(given) / "results.json").exists():
+            found[given.name] = given
         else:
-            found += [(sub.name, sub) for sub in sorted(given.iterdir()) if sub.is_dir()]
-    return found
+            found.update((sub.name, sub) for sub in sorted(given.iterdir()) if sub.is_dir())
+    if submissions:
+        grades = pathlib.Path(inputs[0])
+        for sub in sorted(folder_or_exit(pathlib.Path(submissions)).iterdir()):
+            if sub.is_dir():
+                found.setdefault(sub.name, grades / sub.name)
+    return sorted(found.items())
 
 
 def read_row(student, folder):
@@ -138,13 +150,14 @@ def write_atomically(path, text):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("grades", nargs="+", help="a student's grade folder, or a folder of them")
+    parser.add_argument("--submissions", help="the folder of the students' trees: each one gets a row")
     parser.add_argument("--csv", type=pathlib.Path, help="write the table as CSV here")
     parser.add_argument("--html", type=pathlib.Path, help="write the table as HTML here")
     args = parser.parse_args()
-    folders = student_folders(args.grades)
+    folders = student_folders(args.grades, args.submissions)
     if not folders:
         raise SystemExit(f"class_table: error: {', '.join(args.grades)}: no grade folders in it")
-    rows = sorted((read_row(student, folder) for student, folder in folders), key=lambda r: r["student"])
+    rows = [read_row(student, folder) for student, folder in folders]
     header, body, stages = table(rows)
     text = write_csv(header, body)
     if args.csv:

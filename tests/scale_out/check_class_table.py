@@ -67,6 +67,16 @@ def main():
         check('href="grades/ann/report.html"' in page, "no link to ann's own report")
         check(page.count("<tr>") == 1 + len(students), f"{page.count('<tr>')} table rows for {len(students)} students")
 
+        # A student whose grading job failed before it made a grade folder: --submissions lists them.
+        submissions = pathlib.Path(tmp) / "submissions"
+        for name in [*students, "eve"]:
+            (submissions / name).mkdir(parents=True)
+        r = run(grades, "--submissions", submissions, "--csv", out_csv)
+        rows = {row["student"]: row for row in csv.DictReader(out_csv.read_text().splitlines())}
+        check("eve" in rows and "grades/eve/results.json: no results" in rows["eve"]["problem"],
+              f"a submission without a grade folder is missing from the table: {sorted(rows)}")
+        check(r.returncode == 1 and len(rows) == len(students) + 1, f"--submissions: exit {r.returncode}, {len(rows)} rows")
+
         # Only good students: exit 0; a single student's folder works too.
         for name in ("cy", "dee"):
             for f in (grades / name).iterdir():
