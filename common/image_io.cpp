@@ -94,10 +94,13 @@ Image decode_pfm(const std::string& bytes, const std::string& name) {
   in.get();  // exactly one whitespace character ends the header
   const int channels = magic == "PF" ? 3 : 1;
   const bool file_is_little_endian = scale < 0.0;
-  std::vector<float> data(size_t(width) * size_t(height) * size_t(channels));
-  in.read(reinterpret_cast<char*>(data.data()), std::streamsize(data.size() * sizeof(float)));
-  if (in.gcount() != std::streamsize(data.size() * sizeof(float)))
+  // The header's size is checked against the bytes there are before anything is allocated.
+  const size_t floats = size_t(width) * size_t(height) * size_t(channels);
+  const std::streamoff data_start = in.tellg();
+  if (data_start < 0 || bytes.size() - size_t(data_start) < floats * sizeof(float))
     throw InputError(name + ": PFM data is truncated");
+  std::vector<float> data(floats);
+  in.read(reinterpret_cast<char*>(data.data()), std::streamsize(data.size() * sizeof(float)));
   if (file_is_little_endian != (std::endian::native == std::endian::little))
     for (float& v : data) v = std::bit_cast<float>(__builtin_bswap32(std::bit_cast<std::uint32_t>(v)));
 

@@ -84,7 +84,9 @@ TEST(Pfm, BadFilesGiveInputErrorsNamingTheFile) {
   testing::write_text(dir / "truncated.pfm", "PF\n4 4\n-1.0\n1234");
   testing::write_text(dir / "nonsense.pfm", "P6\n4 4\n255\n");
   testing::write_text(dir / "huge.pfm", "PF\n999999999 999999999\n-1.0\n");
-  for (const char* name : {"truncated.pfm", "nonsense.pfm", "huge.pfm", "missing.pfm"}) {
+  // A size the reader accepts, but far more than the file holds: refused before 43 GB are allocated.
+  testing::write_text(dir / "claims.pfm", "PF\n60000 60000\n-1.0\n1234");
+  for (const char* name : {"truncated.pfm", "nonsense.pfm", "huge.pfm", "claims.pfm", "missing.pfm"}) {
     try {
       read_pfm(dir / name);
       ADD_FAILURE() << name << " was accepted";

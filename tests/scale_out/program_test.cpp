@@ -192,6 +192,15 @@ TEST_F(MergeProgram, BadUsageIsExitTwoAndMissingFilesExitOne) {
   std::filesystem::create_directory(dir / "empty");
   expect_one_line_error(run_merge((dir / "empty").string()), 1, "no sample batches (*.json) in this folder");
   expect_one_line_error(run_merge("--spp 0 " + batch(0)), 2, "--spp");
+  // A batch that claims a 2^20 x 2^20 image: refused with the figures before the image is allocated.
+  std::string text = testing::read_text(batch(0));
+  for (const auto& [from, to] : {std::pair("\"width\": 32", "\"width\": 1048576"),
+                                 std::pair("\"height\": 24", "\"height\": 1048576")}) {
+    ASSERT_NE(text.find(from), std::string::npos) << text;
+    text.replace(text.find(from), std::string(from).size(), to);
+  }
+  testing::write_text(dir / "huge.json", text);
+  expect_one_line_error(run_merge((dir / "huge.json").string()), 1, "a 1048576x1048576 image has more than 2^31 - 1 pixels");
 }
 
 TEST_F(MergeProgram, ProgressiveMergeReportsSamplesPerPixelAndTheError) {

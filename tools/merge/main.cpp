@@ -8,6 +8,7 @@
 // machine, then one of those). Exit codes as the stage programs: 1 for batches that do not add up
 // (each refusal one line naming the files), 2 for bad usage.
 #include "common/batch_merge.h"
+#include "common/cli.h"
 #include "common/error.h"
 #include "common/file_io.h"
 #include "common/image_io.h"
@@ -63,6 +64,9 @@ void run(const std::string& out, const std::optional<int>& spp, bool partial, co
   if (!is_batch_path(out)) image_format_for(out);
   check_output_writable(out);
   const std::vector<SampleBatch> batches = read_batches(inputs);
+  // The merged image is held whole: refuse, with the figures, one this machine could not hold.
+  if (!batches.empty())
+    check_image_fits(out, batches[0].identity.width, batches[0].identity.height, physical_memory_bytes());
   MergeOptions options;
   options.spp = spp;
   options.partial = partial;
