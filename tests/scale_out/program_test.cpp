@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <regex>
 
 namespace rt {
 namespace {
@@ -141,11 +140,11 @@ class MergeProgram : public ::testing::Test {
   testing::CommandResult run_merge(const std::string& arguments) {
     return run_command(merge("--out " + (dir / "out.pfm").string() + " " + arguments), dir);
   }
-  // The RMSE merge reports against a reference.
+  // The RMSE merge reports against a reference ("...; RMSE 0.0123 against ref.pfm; ...").
   static double reported_rmse(const std::string& out) {
-    std::smatch m;
-    EXPECT_TRUE(std::regex_search(out, m, std::regex("RMSE ([0-9.e-]+) against"))) << out;
-    return m.empty() ? 0.0 : std::stod(m[1]);
+    const size_t at = out.find("RMSE ");
+    EXPECT_NE(at, std::string::npos) << out;
+    return at == std::string::npos ? 0.0 : std::stod(out.substr(at + 5));
   }
 
   static constexpr const char* kRanges[] = {"0:4", "4:10", "10:16"};
