@@ -28,31 +28,25 @@ void require_same_render(const SampleBatch& first, const SampleBatch& b) {
   if (y.options != x.options) refuse("has options \"" + y.options + "\"", "has \"" + x.options + "\"");
 }
 
-struct PieceOf {
-  BatchPiece piece;
-  size_t batch;
-};
-
-// No two pieces may hold the same samples of the same pixel: that is a batch rendered or given twice.
-void require_disjoint(const std::vector<SampleBatch>& batches, const std::vector<PieceOf>& pieces) {
+// No two pieces may hold the same samples of the same pixel: that is a batch rendered or given
+// twice. `owner[i]` is the batch that holds pieces[i].
+void require_disjoint(const std::vector<SampleBatch>& batches, const std::vector<BatchPiece>& pieces,
+                      const std::vector<size_t>& owner) {
   for (size_t i = 0; i < batches.size(); ++i)
     for (size_t j = 0; j < i; ++j)
       if (std::filesystem::weakly_canonical(batches[i].file) == std::filesystem::weakly_canonical(batches[j].file))
         throw InputError(name_of(batches[i]) + ": given twice");
-  for (size_t i = 0; i < pieces.size(); ++i)
-    for (size_t j = 0; j < i; ++j) {
-      const BatchPiece &a = pieces[i].piece, &b = pieces[j].piece;
-      const PixelRect shared = a.pixels.intersection(b.pixels);
-      if (shared.empty() || !a.samples.overlaps(b.samples)) continue;
-      const SampleRange both{std::max(a.samples.begin, b.samples.begin), std::min(a.samples.end, b.samples.end)};
-      throw InputError(name_of(batches[pieces[j].batch]) + " and " + name_of(batches[pieces[i].batch]) +
-                       " both hold samples " + format_range(both) + " of pixels " + format_rect(shared) +
-                       ": a batch was rendered or given twice");
-    }
+  if (const auto overlap = first_overlap(pieces)) {
+    const auto [i, j] = *overlap;
+    const BatchPiece both = shared_part(pieces[i], pieces[j]);
+    throw InputError(name_of(batches[owner[j]]) + " and " + name_of(batches[owner[i]]) + " both hold samples " +
+                     format_range(both.samples) + " of pixels " + format_rect(both.pixels) +
+                     ": a batch was rendered or given twice");
+  }
 }
 
 // Names one pixel that lacks samples and the ranges of [0, spp) that no piece holds for it.
-void report_missing(const std::vector<PieceOf>& pieces, const std::vector<std::uint32_t>& expected,
+void report_missing(const std::vector<BatchPiece>& pieces, const std::vector<std::uint32_t>& expected,
                     const PixelRect& image, int spp) {
   size_t short_pixels = 0, first = expected.size();
   for (size_t i = 0; i < expected.size(); ++i)
@@ -63,8 +57,8 @@ void report_missing(const std::vector<PieceOf>& pieces, const std::vector<std::u
   if (short_pixels == 0) return;
   const int x = int(first % size_t(image.width())), y = int(first / size_t(image.width()));
   std::vector<SampleRange> held;
-  for (const PieceOf& p : pieces)
-    if (p.piece.pixels.contains(x, y)) held.push_back(p.piece.samples);
+  for (const BatchPiece& p : pieces)
+    if (p.pixels.contains(x, y)) held.push_back(p.samples);
   std::sort(held.begin(), held.end(), [](const SampleRange& a, const SampleRange& b) { return a.begin < b.begin; });
   std::string gaps;
   int next = 0;
@@ -97,7 +91,8 @@ MergeResult merge_batches(const std::vector<SampleBatch>& given, const MergeOpti
     return std::tuple(first_sample(a), a.window.y0, a.window.x0) < std::tuple(first_sample(b), b.window.y0, b.window.x0);
   });
 
-  std::vector<PieceOf> pieces;
+  std::vector<BatchPiece> pieces;
+  std::vector<size_t> owner;  // the batch of each piece
   int last_end = 0;
   for (size_t i = 0; i < batches.size(); ++i) {
     require_same_render(batches[0], batches[i]);
@@ -105,22 +100,21 @@ MergeResult merge_batches(const std::vector<SampleBatch>& given, const MergeOpti
       throw InputError(name_of(batches[i]) +
                        ": interrupted before it finished its samples (render it again, or merge with --partial)");
     for (const BatchPiece& p : batches[i].pieces) {
-      pieces.push_back({p, i});
+      pieces.push_back(p);
+      owner.push_back(i);
       last_end = std::max(last_end, p.samples.end);
     }
   }
   const int spp = options.spp.value_or(last_end);
-  for (const PieceOf& p : pieces)
-    if (p.piece.samples.end > spp)
-      throw InputError(name_of(batches[p.batch]) + ": holds samples " + format_range(p.piece.samples) +
+  for (size_t k = 0; k < pieces.size(); ++k)
+    if (pieces[k].samples.end > spp)
+      throw InputError(name_of(batches[owner[k]]) + ": holds samples " + format_range(pieces[k].samples) +
                        ", beyond the " + std::to_string(spp) + " samples per pixel asked for");
-  require_disjoint(batches, pieces);
+  require_disjoint(batches, pieces, owner);
 
   const RenderIdentity& id = batches[0].identity;
   const PixelRect image{0, 0, id.width, id.height};
-  std::vector<BatchPiece> all_pieces;
-  for (const PieceOf& p : pieces) all_pieces.push_back(p.piece);
-  if (!options.partial) report_missing(pieces, expected_counts(image, all_pieces), image, spp);
+  if (!options.partial) report_missing(pieces, expected_counts(image, pieces), image, spp);
 
   PixelRect window = batches[0].window;
   for (const SampleBatch& b : batches)
@@ -141,7 +135,7 @@ MergeResult merge_batches(const std::vector<SampleBatch>& given, const MergeOpti
   SampleBatch& merged = result.merged;
   merged.identity = id;
   merged.window = window;
-  merged.pieces = std::move(all_pieces);
+  merged.pieces = std::move(pieces);
   merged.interrupted = std::any_of(batches.begin(), batches.end(), [](const SampleBatch& b) { return b.interrupted; });
   merged.sums = SampleSums(window.width(), window.height());
   for (int y = 0; y < window.height(); ++y)

@@ -206,8 +206,21 @@ int run_stage_program(int argc, char** argv, const std::string& program, const s
   add_stage_flags(app);
   const std::vector<std::pair<CLI::Option*, std::string>> stage_flags = stage_flag_defaults(app, common_flags);
 
+  if (const std::optional<int> exit_code = parse_command_line(app, argc, argv, program)) return *exit_code;
+  options.image_flags = describe_flags(stage_flags);
+
+  InterruptHandler interrupt_handler;
+  return run_reporting_errors(program, [&] {
+    if (!is_batch_path(options.out)) image_format_for(options.out);
+    check_output_writable(options.out);
+    run();
+  });
+}
+
+std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv, const std::string& program) {
   try {
     app.parse(argc, argv);
+    return std::nullopt;
   } catch (const CLI::CallForHelp&) {
     std::fputs(app.help().c_str(), stdout);
     return kExitOk;
@@ -215,14 +228,11 @@ int run_stage_program(int argc, char** argv, const std::string& program, const s
     std::fprintf(stderr, "%s: error: %s (see --help)\n", program.c_str(), e.what());
     return kExitBadUsage;
   }
+}
 
-  options.image_flags = describe_flags(stage_flags);
-
-  InterruptHandler interrupt_handler;
+int run_reporting_errors(const std::string& program, const std::function<void()>& body) {
   try {
-    if (!is_batch_path(options.out)) image_format_for(options.out);
-    check_output_writable(options.out);
-    run();
+    body();
     return kExitOk;
   } catch (const Interrupted& stop) {
     return 128 + stop.signal_number;

@@ -65,4 +65,12 @@ int run_stage_program(int argc, char** argv, const std::string& program, const s
                       CommonOptions& options, const std::function<void(CLI::App&)>& add_stage_flags,
                       const std::function<void()>& run);
 
+// The two halves of that, for any program of the project (the merge program too).
+// Parses `app`: returns nothing when the run should go on, or the exit code after --help (0, help
+// printed) or a usage error (2, one line "PROGRAM: error: ... (see --help)").
+std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv, const std::string& program);
+// Runs `body` and returns the exit code: 0; 2 for UsageError; 1 for InputError, out of memory or
+// any other exception, each with one line "PROGRAM: error: ..."; 128 + the signal for Interrupted.
+int run_reporting_errors(const std::string& program, const std::function<void()>& body);
+
 }  // namespace rt

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace fs = std::filesystem;
@@ -105,6 +106,20 @@ std::string format_rect(const PixelRect& r) {
 }
 std::string format_range(const SampleRange& r) { return std::to_string(r.begin) + ":" + std::to_string(r.end); }
 
+BatchPiece shared_part(const BatchPiece& a, const BatchPiece& b) {
+  return {a.pixels.intersection(b.pixels),
+          {std::max(a.samples.begin, b.samples.begin), std::min(a.samples.end, b.samples.end)}};
+}
+
+std::optional<std::pair<size_t, size_t>> first_overlap(const std::vector<BatchPiece>& pieces) {
+  for (size_t i = 0; i < pieces.size(); ++i)
+    for (size_t j = 0; j < i; ++j) {
+      const BatchPiece both = shared_part(pieces[i], pieces[j]);
+      if (!both.pixels.empty() && both.samples.count() > 0) return std::pair(i, j);
+    }
+  return std::nullopt;
+}
+
 std::vector<std::uint32_t> expected_counts(const PixelRect& window, const std::vector<BatchPiece>& pieces) {
   std::vector<std::uint32_t> counts(window.area(), 0);
   for (const BatchPiece& piece : pieces) {
@@ -188,11 +203,11 @@ SampleBatch read_sample_batch(const fs::path& json_path) {
     const auto [begin, end] = in.pair(p, "samples", kMaxSpp, "samples");
     if (!batch.window.contains(pixels))
       in.fail("a piece's pixels " + format_rect(pixels) + " lie outside the window " + format_rect(batch.window));
-    for (const BatchPiece& other : batch.pieces)
-      if (!other.pixels.intersection(pixels).empty() && other.samples.overlaps({begin, end}))
-        in.fail("two pieces both hold samples of pixels " + format_rect(other.pixels.intersection(pixels)));
     batch.pieces.push_back({pixels, {begin, end}});
   }
+  if (const auto overlap = first_overlap(batch.pieces))
+    in.fail("two pieces both hold samples of pixels " +
+            format_rect(shared_part(batch.pieces[overlap->first], batch.pieces[overlap->second]).pixels));
   const json& interrupted = in.field(d, "interrupted");
   if (!interrupted.is_boolean()) in.fail("\"interrupted\" is not true or false");
   batch.interrupted = interrupted.get<bool>();

@@ -17,7 +17,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rt {
@@ -27,7 +29,6 @@ struct SampleRange {
   int begin = 0, end = 0;
 
   int count() const { return end - begin; }
-  bool overlaps(const SampleRange& r) const { return begin < r.end && r.begin < end; }
   friend bool operator==(const SampleRange&, const SampleRange&) = default;
 };
 
@@ -37,6 +38,11 @@ struct BatchPiece {
   SampleRange samples;
   friend bool operator==(const BatchPiece&, const BatchPiece&) = default;
 };
+
+// What two pieces both hold: the pixels of both and the samples of both (either may be empty).
+BatchPiece shared_part(const BatchPiece& a, const BatchPiece& b);
+// The first pair (i, j), j < i, of pieces that hold some of the same samples of the same pixels.
+std::optional<std::pair<size_t, size_t>> first_overlap(const std::vector<BatchPiece>& pieces);
 
 // What makes batches parts of one render. Two batches merge only when all of it agrees but `scene`,
 // the path as given, which is kept for messages (the same scene may lie elsewhere on each machine).

@@ -117,26 +117,6 @@ int main(int argc, char** argv) {
                "Progressive refinement: merge the batches there are, each pixel the mean of the samples it has");
   app.add_option("--reference", reference, "A reference image (PFM) to report the merged render's RMSE against");
   app.add_option("batches", inputs, "Batch descriptions (NAME.json) or folders of them")->required();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp&) {
-    std::fputs(app.help().c_str(), stdout);
-    return kExitOk;
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "merge: error: %s (see --help)\n", e.what());
-    return kExitBadUsage;
-  }
-  try {
-    run(out, spp, partial, reference, inputs);
-    return kExitOk;
-  } catch (const UsageError& e) {
-    std::fprintf(stderr, "merge: error: %s\n", e.what());
-    return kExitBadUsage;
-  } catch (const InputError& e) {
-    std::fprintf(stderr, "merge: error: %s\n", e.what());
-    return kExitBadInput;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "merge: error: %s\n", e.what());
-    return kExitBadInput;
-  }
+  if (const std::optional<int> exit_code = parse_command_line(app, argc, argv, "merge")) return *exit_code;
+  return run_reporting_errors("merge", [&] { run(out, spp, partial, reference, inputs); });
 }
