@@ -1,8 +1,10 @@
 #include "common/batch_merge.h"
 
 #include "common/error.h"
+#include "common/memory_limit.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace rt {
@@ -32,10 +34,15 @@ void require_same_render(const SampleBatch& first, const SampleBatch& b) {
 // twice. `owner[i]` is the batch that holds pieces[i].
 void require_disjoint(const std::vector<SampleBatch>& batches, const std::vector<BatchPiece>& pieces,
                       const std::vector<size_t>& owner) {
-  for (size_t i = 0; i < batches.size(); ++i)
-    for (size_t j = 0; j < i; ++j)
-      if (std::filesystem::weakly_canonical(batches[i].file) == std::filesystem::weakly_canonical(batches[j].file))
-        throw InputError(name_of(batches[i]) + ": given twice");
+  std::vector<std::pair<std::filesystem::path, size_t>> files;  // sorted, so a repeat is a neighbour
+  for (size_t i = 0; i < batches.size(); ++i) files.emplace_back(std::filesystem::weakly_canonical(batches[i].file), i);
+  std::sort(files.begin(), files.end());
+  for (size_t k = 1; k < files.size(); ++k)
+    if (files[k].first == files[k - 1].first) throw InputError(name_of(batches[files[k].second]) + ": given twice");
+  if (covered_pixels(pieces) > kMaxCoveredPixels)
+    throw InputError("the " + std::to_string(batches.size()) + " batches' pieces cover " +
+                     std::to_string(covered_pixels(pieces)) + " pixels in all, more than the " +
+                     std::to_string(kMaxCoveredPixels) + " one merge takes (merge them in groups)");
   if (const auto overlap = first_overlap(pieces)) {
     const auto [i, j] = *overlap;
     const BatchPiece both = shared_part(pieces[i], pieces[j]);
@@ -120,6 +127,8 @@ MergeResult merge_batches(const std::vector<SampleBatch>& given, const MergeOpti
   for (const SampleBatch& b : batches)
     window = {std::min(window.x0, b.window.x0), std::min(window.y0, b.window.y0), std::max(window.x1, b.window.x1),
               std::max(window.y1, b.window.y1)};
+  // The sums are held over the windows' bounding box (and the image, whole, by merged_image).
+  check_image_fits(name_of(batches[0]), image.width(), image.height(), memory_limit());
   std::vector<DVec3> sum(window.area(), DVec3(0.0));
   std::vector<std::uint32_t> count(window.area(), 0);
   for (const SampleBatch& b : batches)
@@ -141,7 +150,13 @@ MergeResult merge_batches(const std::vector<SampleBatch>& given, const MergeOpti
   for (int y = 0; y < window.height(); ++y)
     for (int x = 0; x < window.width(); ++x) {
       const size_t i = size_t(y) * size_t(window.width()) + size_t(x);
-      merged.sums.set(x, y, Color(sum[i]), count[i]);
+      const Color total(sum[i]);
+      // Each batch's sums are finite floats, but their sum in double may exceed float's range.
+      if (!std::isfinite(total.r) || !std::isfinite(total.g) || !std::isfinite(total.b))
+        throw InputError("pixel (" + std::to_string(window.x0 + x) + ", " + std::to_string(window.y0 + y) +
+                         "): the batches' sums add up to more than float's range (3.4e38): the merged render would "
+                         "hold infinities");
+      merged.sums.set(x, y, total, count[i]);
     }
 
   // Samples per pixel over the whole image: pixels outside the window have none.

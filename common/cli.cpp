@@ -8,6 +8,8 @@
 
 #include <unistd.h>
 
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <functional>
@@ -18,8 +20,8 @@
 
 namespace rt {
 
-RenderSettings CommonOptions::settings_for(const SceneDescription& scene) const {
-  RenderSettings s = scene.render;
+RenderSettings CommonOptions::settings_for(const SceneDescription& description) const {
+  RenderSettings s = description.render;
   if (spp) s.spp = *spp;
   if (width) s.width = *width;
   if (height) s.height = *height;
@@ -31,8 +33,26 @@ RenderSettings CommonOptions::settings_for(const SceneDescription& scene) const 
     s.spp = range.count;
   }
   if (crop) s.crop = parse_crop(*crop, s.width, s.height);
-  check_image_fits(out, s.window().width(), s.window().height(), physical_memory_bytes());
+  std::vector<std::string> inputs = {scene};
+  for (const Shape& shape : description.shapes)
+    if (const Mesh* mesh = std::get_if<Mesh>(&shape.geometry)) inputs.push_back(mesh->file);
+  require_outputs_spare_inputs(out, inputs);
+  const MemoryLimit limit = memory_limit();
+  check_image_fits(out, s.window().width(), s.window().height(), limit);
+  check_scene_fits(scene, triangle_count(description), s.window().area() * kBytesPerPixel, limit);
   return s;
+}
+
+std::vector<std::string> output_files(const std::string& out) {
+  if (!is_batch_path(out)) return {out};
+  return {out, batch_sum_path(out).string(), batch_count_path(out).string()};
+}
+
+void require_outputs_spare_inputs(const std::string& out, const std::vector<std::string>& inputs) {
+  for (const std::string& output : output_files(out))
+    for (const std::string& input : inputs)
+      if (same_file(output, input))
+        throw UsageError("--out " + out + " would overwrite the input " + input + " (give another output name)");
 }
 
 namespace {
@@ -103,15 +123,6 @@ PixelRect parse_crop(const std::string& text, int width, int height) {
 
 namespace {
 
-std::string binary_size(double bytes) {
-  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB"};
-  int unit = 0;
-  for (; bytes >= 1024.0 && unit < 5; ++unit) bytes /= 1024.0;
-  char text[32];
-  std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", bytes, units[unit]);
-  return text;
-}
-
 // Each of the stage's own flags with its default as text (CLI11 turns a value into the same text
 // whether it was typed or is the default, e.g. an enum's number), taken before parsing; the
 // defaults are then cleared again so that --help shows what it always showed.
@@ -143,28 +154,45 @@ std::string describe_flags(const std::vector<std::pair<CLI::Option*, std::string
 
 }  // namespace
 
-void check_image_fits(const std::string& out, int width, int height, std::uint64_t physical_bytes) {
-  const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
-  const std::string size = std::to_string(width) + "x" + std::to_string(height);
-  if (pixels > std::uint64_t(std::numeric_limits<int>::max()))
-    throw InputError(out + ": a " + size + " image has more than 2^31 - 1 pixels");
-  const std::uint64_t needed = pixels * kBytesPerPixel;
-  if (needed > physical_bytes)
-    throw InputError(out + ": a " + size + " image needs " + binary_size(double(needed)) +
-                     " of memory (the radiance and the encoded file), and this machine has " +
-                     binary_size(double(physical_bytes)));
+CLI::Validator decimal(std::uint64_t lo, std::uint64_t hi) {
+  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  return CLI::Validator(
+      [lo, hi, range](std::string& text) {
+        std::uint64_t value = 0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        if (!digits) return text + ": not a whole number in decimal digits";
+        if (error == std::errc::result_out_of_range || end != text.data() + text.size() || value < lo || value > hi)
+          return text + ": must be in " + range;
+        text = std::to_string(value);
+        return std::string();
+      },
+      "INT in " + range);
 }
 
-std::uint64_t physical_memory_bytes() {
-  const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || page_size <= 0) return std::numeric_limits<std::uint64_t>::max();  // unknown: do not refuse
-  return std::uint64_t(pages) * std::uint64_t(page_size);
+CLI::Validator finite_range(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) {
+        double value = 0.0;
+        try {
+          size_t used = 0;
+          value = std::stod(text, &used);
+          if (used != text.size()) return text + ": not a number";
+        } catch (const std::exception&) {
+          return text + ": not a number";
+        }
+        if (!std::isfinite(value) || value < lo || value > hi)
+          return text + ": must be a finite number in [" + CLI::detail::to_string(lo) + ", " +
+                 CLI::detail::to_string(hi) + "]";
+        return std::string();
+      },
+      "FLOAT in [" + CLI::detail::to_string(lo) + " - " + CLI::detail::to_string(hi) + "]");
 }
 
 void add_max_depth_flag(CLI::App& app, CommonOptions& options) {
   app.add_option("--max-depth", options.max_depth,
                  "Recursion depth limit: bounces followed before a path stops (default: the scene's)")
-      ->check(CLI::Range(0, 1000));
+      ->transform(decimal(0, 1000));
 }
 
 int run_stage_program(int argc, char** argv, const std::string& program, const std::string& title,
@@ -178,20 +206,16 @@ int run_stage_program(int argc, char** argv, const std::string& program, const s
                  "for merge: the undivided sums and counts, see docs/scale-out.md)")
       ->required();
   CLI::Option* spp = app.add_option("--spp", options.spp, "Samples per pixel (default: the scene's)")
-                         ->check(CLI::Range(1, kMaxSpp));
+                         ->transform(decimal(1, kMaxSpp));
   app.add_option("--width", options.width, "Image width in pixels (default: the scene's)")
-      ->check(CLI::Range(1, kMaxImageSide));
+      ->transform(decimal(1, kMaxImageSide));
   app.add_option("--height", options.height, "Image height in pixels (default: the scene's)")
-      ->check(CLI::Range(1, kMaxImageSide));
+      ->transform(decimal(1, kMaxImageSide));
   app.add_option("--threads", options.threads, "Worker threads, 0 = all cores")
-      ->check(CLI::Range(0, 1024));
-  // CLI11 would wrap "-1" around to 2^64 - 1 for an unsigned option; a sign is refused instead.
+      ->transform(decimal(0, 1024));
+  // Checked as text: CLI11 would wrap "-1" around to 2^64 - 1 and clamp 2^64 to 2^64 - 1.
   app.add_option("--seed", options.seed, "Random seed (default: the scene's)")
-      ->check(CLI::Validator(
-          [](const std::string& value) {
-            return value.find('-') == std::string::npos ? std::string() : "a seed is a non-negative integer";
-          },
-          "UINT"));
+      ->transform(decimal(0, std::numeric_limits<std::uint64_t>::max()));
   // Their form is checked here, the crop's fit to the image once the scene's size is known.
   app.add_option("--sample-range", options.sample_range,
                  "Render samples a to b - 1 of each pixel (a:b), e.g. one batch of a render split "
@@ -210,11 +234,15 @@ int run_stage_program(int argc, char** argv, const std::string& program, const s
   options.image_flags = describe_flags(stage_flags);
 
   InterruptHandler interrupt_handler;
-  return run_reporting_errors(program, [&] {
-    if (!is_batch_path(options.out)) image_format_for(options.out);
-    check_output_writable(options.out);
-    run();
-  });
+  return run_reporting_errors(
+      program,
+      [&] {
+        if (!is_batch_path(options.out)) image_format_for(options.out);
+        for (const std::string& file : output_files(options.out)) check_output_writable(file);
+        require_outputs_spare_inputs(options.out, {options.scene});
+        run();
+      },
+      options.scene);
 }
 
 std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv, const std::string& program) {
@@ -225,28 +253,32 @@ std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv, cons
     std::fputs(app.help().c_str(), stdout);
     return kExitOk;
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "%s: error: %s (see --help)\n", program.c_str(), e.what());
+    std::fprintf(stderr, "%s: error: %s (see --help)\n", program.c_str(), printable(e.what()).c_str());
     return kExitBadUsage;
   }
 }
 
-int run_reporting_errors(const std::string& program, const std::function<void()>& body) {
+int run_reporting_errors(const std::string& program, const std::function<void()>& body, const std::string& subject) {
+  auto report = [&](const char* kind, const std::string& what) {
+    std::fprintf(stderr, "%s: %s%s\n", program.c_str(), kind, printable(what).c_str());
+  };
   try {
     body();
     return kExitOk;
   } catch (const Interrupted& stop) {
+    if (!stop.message.empty()) report("", stop.message);
     return 128 + stop.signal_number;
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
+    report("error: ", e.what());
     return kExitBadUsage;
   } catch (const InputError& e) {
-    std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
+    report("error: ", e.what());
     return kExitBadInput;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "%s: error: out of memory\n", program.c_str());
+    report("error: ", (subject.empty() ? "" : subject + ": ") + "out of memory, and " + memory_limit().describe());
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
+    report("error: ", e.what());
     return kExitBadInput;
   }
 }

@@ -3,6 +3,7 @@
 // failure is one line on stderr.
 #pragma once
 
+#include "common/memory_limit.h"
 #include "common/scene.h"
 
 #include <CLI/CLI.hpp>
@@ -11,6 +12,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace rt {
 
@@ -34,9 +36,9 @@ struct CommonOptions {
   std::string image_flags;
 
   // The scene's render block with the command-line values put over it.
-  // Throws UsageError for a sample range or crop window that is malformed or outside the image,
-  // and InputError (naming the output file, with the figures) for an image this machine could not
-  // hold: see check_image_fits.
+  // Throws UsageError for a sample range or crop window that is malformed or outside the image, or
+  // for an output that is one of the scene's own files (the scene, a mesh); and InputError, with
+  // the figures, for an image or a scene this process could not hold (common/memory_limit.h).
   RenderSettings settings_for(const SceneDescription& scene) const;
 };
 
@@ -45,14 +47,14 @@ struct CommonOptions {
 SampleRangeFlag parse_sample_range(const std::string& text);
 PixelRect parse_crop(const std::string& text, int width, int height);
 
-// Refuses, before anything is allocated, an image of more than 2^31 - 1 pixels or one whose
-// memory (kBytesPerPixel: the radiance, 12 bytes, and the encoded file, up to 12 more) exceeds
-// `physical_bytes`, the machine's memory. Throws InputError "OUT: a WxH image needs ..., this
-// machine has ...".
-inline constexpr std::uint64_t kBytesPerPixel = 24;
-void check_image_fits(const std::string& out, int width, int height, std::uint64_t physical_bytes);
-// The machine's physical memory in bytes (sysconf).
-std::uint64_t physical_memory_bytes();
+// A CLI11 check for an integer flag: decimal digits only (CLI11 itself reads "010" as octal 8 and
+// "0x10" as 16) with a value in [lo, hi], exact up to 2^64 - 1; the text is rewritten without its
+// leading zeros before CLI11 converts it.
+CLI::Validator decimal(std::uint64_t lo, std::uint64_t hi);
+
+// A CLI11 check for a floating-point flag: a finite number in [lo, hi] (CLI::Range lets NaN
+// through, since every comparison with NaN is false).
+CLI::Validator finite_range(double lo, double hi);
 
 // --max-depth, for the stage programs that follow rays recursively (stage 2 on).
 void add_max_depth_flag(CLI::App& app, CommonOptions& options);
@@ -70,7 +72,16 @@ int run_stage_program(int argc, char** argv, const std::string& program, const s
 // printed) or a usage error (2, one line "PROGRAM: error: ... (see --help)").
 std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv, const std::string& program);
 // Runs `body` and returns the exit code: 0; 2 for UsageError; 1 for InputError, out of memory or
-// any other exception, each with one line "PROGRAM: error: ..."; 128 + the signal for Interrupted.
-int run_reporting_errors(const std::string& program, const std::function<void()>& body);
+// any other exception, each with one line "PROGRAM: error: ..." (control characters escaped);
+// 128 + the signal for Interrupted, with its message if it has one. Out of memory names `subject`
+// (the scene, say) and the limit this process runs under.
+int run_reporting_errors(const std::string& program, const std::function<void()>& body,
+                         const std::string& subject = "");
+
+// The files an output writes: OUT itself, or for a sample batch NAME.json, NAME.sum.pfm and
+// NAME.count.pfm (common/sample_batch.h).
+std::vector<std::string> output_files(const std::string& out);
+// Throws UsageError when an output file is one of `inputs`: writing it would destroy the input.
+void require_outputs_spare_inputs(const std::string& out, const std::vector<std::string>& inputs);
 
 }  // namespace rt

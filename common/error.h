@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace rt {
 
@@ -17,11 +18,17 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// A render stopped by SIGINT or SIGTERM (common/interrupt.h), after its partial image was written.
-// Exit code 128 + the signal's number, as a shell reports a process the signal ended.
+// A run stopped by SIGINT, SIGTERM or SIGHUP (common/interrupt.h): after its partial image was
+// written, or before anything was (then `message` says so). Exit code 128 + the signal's number, as
+// a shell reports a process the signal ended.
 struct Interrupted {
   int signal_number;
+  std::string message;  // printed as "PROGRAM: MESSAGE" when not empty
 };
+
+// `text` with every control character (a newline in a file name, say) written as an escape: \n,
+// \r, \t or \xHH. Every message a program prints goes through it, so an error is always one line.
+std::string printable(std::string_view text);
 
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitBadInput = 1;

@@ -33,7 +33,7 @@ void on_signal(int signal_number) {
   ::_exit(128 + signal_number);
 }
 
-struct sigaction previous_int, previous_term;
+struct sigaction previous_int, previous_term, previous_hup;
 
 }  // namespace
 
@@ -44,11 +44,14 @@ InterruptHandler::InterruptHandler() {
   action.sa_flags = SA_RESTART;  // a write(2) in progress goes on rather than failing with EINTR
   sigaction(SIGINT, &action, &previous_int);
   sigaction(SIGTERM, &action, &previous_term);
+  // A closed terminal (SIGHUP) is a stop request like SIGTERM, not a lost render.
+  sigaction(SIGHUP, &action, &previous_hup);
 }
 
 InterruptHandler::~InterruptHandler() {
   sigaction(SIGINT, &previous_int, nullptr);
   sigaction(SIGTERM, &previous_term, nullptr);
+  sigaction(SIGHUP, &previous_hup, nullptr);
 }
 
 bool interrupt_requested() { return requested_signal.load(std::memory_order_relaxed) != 0; }

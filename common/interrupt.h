@@ -1,7 +1,8 @@
-// Stopping a long render on Ctrl-C (SIGINT) or SIGTERM without losing it. The first signal only
-// raises a flag: the pixel loop sees it within one sample, stops, and the program writes what it
-// has (each pixel normalized by the samples it finished) and says so. A second SIGINT exits at
-// once (after removing a half-written temporary file), for when even that is too slow.
+// Stopping a long render on Ctrl-C (SIGINT), SIGTERM or SIGHUP (a closed terminal) without losing
+// it. The first signal only raises a flag: the pixel loop sees it within one sample, stops, and the
+// program writes what it has (each pixel normalized by the samples it finished) and says so; a
+// read of an input sees it too (common/file_io.h). A second signal exits at once (after removing a
+// half-written temporary file), for when even that is too slow.
 #pragma once
 
 #include <filesystem>

@@ -11,6 +11,9 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -23,6 +26,7 @@ struct ObjLines {
   std::vector<int> face_lines;  // line number of each 'f' statement, in file order
   size_t vertex_count = 0;
   size_t normal_count = 0;
+  size_t texture_count = 0;
 };
 
 std::vector<std::string_view> split_words(std::string_view line) {
@@ -37,47 +41,85 @@ std::vector<std::string_view> split_words(std::string_view line) {
   return words;
 }
 
-// Reads the three coordinates of a 'v' or 'vn' statement; returns the offending word, if any.
+// Reads the three coordinates of a 'v' or 'vn' statement; returns the offending word, if any. Read
+// in double, so that a number too small for float (1e-50) becomes 0 as in any OBJ reader, while one
+// too large for it (1e40), like nan and inf, is refused.
 std::optional<std::string> read_three_numbers(const std::vector<std::string_view>& words, Vec3& out) {
   if (words.size() < 4) return std::string("(missing)");
   for (int i = 0; i < 3; ++i) {
-    const std::string_view word = words[size_t(i) + 1];
-    float value = 0.0f;
-    const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-    if (error != std::errc() || end != word.data() + word.size() || !std::isfinite(value))
-      return std::string(word);
-    out[i] = value;
+    const std::string word(words[size_t(i) + 1]);
+    char* end = nullptr;
+    const double value = std::strtod(word.c_str(), &end);
+    if (end != word.c_str() + word.size() || !(std::abs(value) <= double(std::numeric_limits<float>::max())))
+      return word;
+    out[i] = float(value);
   }
   return std::nullopt;
 }
 
-// A face corner "v", "v/vt", "v/vt/vn" or "v//vn": each present index a non-zero integer.
-bool valid_corner(std::string_view corner) {
-  int fields = 0;
-  while (true) {
+// Where one kind of index (vertex, texture, normal) may point, and the positive indices that point
+// past the statements read so far, checked against the file's total once it is known.
+struct IndexKind {
+  const char* name;    // "vertex", "texture", "normal"
+  const char* plural;  // "vertices", "texture coordinates", "normals"
+  size_t& count;       // statements of this kind so far
+  struct Forward {
+    int line;
+    std::string text;
+    long long value;
+  };
+  std::vector<Forward> forward;
+};
+
+// One corner field, as written. Returns false when it is not a non-zero integer (the caller names
+// the corner). OBJ counts from 1; a negative index counts back from the last statement before the
+// face. Throws for an index that points before the first statement, quoting it exactly; keeps in
+// kind.forward a positive index past the statements so far.
+bool check_index(std::string_view field, IndexKind& kind, int line, const std::string& at) {
+  long long index = 0;
+  const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), index);
+  if (field.empty() || end != field.data() + field.size() || error == std::errc::invalid_argument) return false;
+  const bool overflow = error == std::errc::result_out_of_range;
+  const std::string text(field);
+  if (overflow ? field[0] == '-' : index < -(long long)kind.count)
+    throw InputError(at + kind.name + " index " + text + " is out of range (" + std::to_string(kind.count) + " " +
+                     kind.plural + " come before it)");
+  if (overflow) index = std::numeric_limits<long long>::max();  // past any file's statements
+  if (index == 0) return false;
+  if (index > (long long)kind.count) kind.forward.push_back({line, text, index});
+  return true;
+}
+
+// A face corner "v", "v/vt", "v/vt/vn" or "v//vn": each present index a non-zero integer in range.
+void check_corner(std::string_view corner, IndexKind* kinds[3], int line, const std::string& at) {
+  const std::string corner_text(corner);
+  bool well_formed = true;
+  for (int fields = 0; well_formed; ++fields) {
     const size_t slash = corner.find('/');
     const std::string_view field = corner.substr(0, slash);
-    ++fields;
-    if (!(field.empty() && fields == 2)) {  // only the texture index may be left out
-      long long index = 0;
-      const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), index);
-      if (error != std::errc() || end != field.data() + field.size() || index == 0) return false;
-    }
-    if (slash == std::string_view::npos) return fields <= 3;
+    if (fields == 3) well_formed = false;
+    else if (!(field.empty() && fields == 1)) well_formed = check_index(field, *kinds[fields], line, at);  // vt may be left out
+    if (slash == std::string_view::npos) break;
     corner.remove_prefix(slash + 1);
   }
+  if (!well_formed)
+    throw InputError(at + "face corner '" + corner_text + "' is not v, v/vt, v/vt/vn or v//vn with non-zero " +
+                     "indices (OBJ counts from 1, negative indices count back)");
 }
 
 ObjLines scan_lines(const std::string& text, const std::string& file) {
   ObjLines lines;
+  IndexKind vertices{"vertex", "vertices", lines.vertex_count, {}},
+      textures{"texture", "texture coordinates", lines.texture_count, {}},
+      normals{"normal", "normals", lines.normal_count, {}};
+  IndexKind* kinds[3] = {&vertices, &textures, &normals};
   std::istringstream in(text);
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
     const std::vector<std::string_view> words = split_words(line);
     if (words.empty()) continue;
-    auto fail = [&](const std::string& problem) {
-      throw InputError(file + ":" + std::to_string(number) + ": " + problem);
-    };
+    const std::string at = file + ":" + std::to_string(number) + ": ";
+    auto fail = [&](const std::string& problem) { throw InputError(at + problem); };
     Vec3 v;
     if (words[0] == "v") {
       if (const auto bad = read_three_numbers(words, v))
@@ -86,17 +128,22 @@ ObjLines scan_lines(const std::string& text, const std::string& file) {
     } else if (words[0] == "vn") {
       if (const auto bad = read_three_numbers(words, v))
         fail("normal needs three finite coordinates, got '" + *bad + "'");
-      if (!(glm::length(v) > 0.0f)) fail("normal has zero length");
+      if (!(glm::length(glm::dvec3(v)) > 0.0)) fail("normal has zero length");
       ++lines.normal_count;
+    } else if (words[0] == "vt") {
+      ++lines.texture_count;
     } else if (words[0] == "f") {
       if (words.size() < 4) fail("a face needs at least three corners");
-      for (size_t k = 1; k < words.size(); ++k)
-        if (!valid_corner(words[k]))
-          fail("face corner '" + std::string(words[k]) + "' is not v, v/vt, v/vt/vn or v//vn with non-zero " +
-               "indices (OBJ counts from 1, negative indices count back)");
+      for (size_t k = 1; k < words.size(); ++k) check_corner(words[k], kinds, number, at);
       lines.face_lines.push_back(number);
     }
   }
+  // Positive indices may point forward; by the end of the file they must point at something.
+  for (const IndexKind* kind : kinds)
+    for (const IndexKind::Forward& f : kind->forward)
+      if (f.value > (long long)kind->count)
+        throw InputError(file + ":" + std::to_string(f.line) + ": " + kind->name + " index " + f.text +
+                         " is out of range (the file has " + std::to_string(kind->count) + " " + kind->plural + ")");
   return lines;
 }
 

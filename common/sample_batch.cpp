@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -111,13 +112,65 @@ BatchPiece shared_part(const BatchPiece& a, const BatchPiece& b) {
           {std::max(a.samples.begin, b.samples.begin), std::min(a.samples.end, b.samples.end)}};
 }
 
-std::optional<std::pair<size_t, size_t>> first_overlap(const std::vector<BatchPiece>& pieces) {
-  for (size_t i = 0; i < pieces.size(); ++i)
-    for (size_t j = 0; j < i; ++j) {
-      const BatchPiece both = shared_part(pieces[i], pieces[j]);
-      if (!both.pixels.empty() && both.samples.count() > 0) return std::pair(i, j);
-    }
+std::uint64_t covered_pixels(const std::vector<BatchPiece>& pieces) {
+  std::uint64_t total = 0;
+  for (const BatchPiece& p : pieces) total += p.pixels.area();
+  return total;
+}
+
+namespace {
+
+// Per pixel, the largest sample end of the pieces swept so far, and the piece that reaches it.
+struct Reach {
+  int end = 0;
+  std::uint32_t holder = 0;
+};
+
+// The sweep of first_overlap over `cells` (a vector over the pieces' bounding box, or a hash map
+// when the pieces are few and far apart), which `cell(x, y)` indexes.
+template <class CellOf>
+std::optional<std::pair<size_t, size_t>> sweep(const std::vector<BatchPiece>& pieces, CellOf&& cell) {
+  std::vector<size_t> order(pieces.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return pieces[a].samples.begin < pieces[b].samples.begin; });
+  for (const size_t i : order) {
+    const BatchPiece& piece = pieces[i];
+    if (piece.samples.count() <= 0) continue;
+    for (int y = piece.pixels.y0; y < piece.pixels.y1; ++y)
+      for (int x = piece.pixels.x0; x < piece.pixels.x1; ++x) {
+        Reach& r = cell(x, y);
+        if (piece.samples.begin < r.end) return std::pair(std::max<size_t>(i, r.holder), std::min<size_t>(i, r.holder));
+        r = {piece.samples.end, std::uint32_t(i)};
+      }
+  }
   return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<std::pair<size_t, size_t>> first_overlap(const std::vector<BatchPiece>& pieces) {
+  // A sweep over the samples: taken in order of their first sample, a piece overlaps an earlier one
+  // exactly when, at some pixel of it, its first sample comes before the largest end of the ranges
+  // already there (every earlier range there begins no later than it does). One Reach per pixel
+  // makes this O(n log n) plus the pixels the pieces cover, where comparing every pair was O(n^2):
+  // 59 s for 10^5 pieces.
+  if (pieces.empty()) return std::nullopt;
+  PixelRect box = pieces[0].pixels;
+  for (const BatchPiece& p : pieces)
+    box = {std::min(box.x0, p.pixels.x0), std::min(box.y0, p.pixels.y0), std::max(box.x1, p.pixels.x1),
+           std::max(box.y1, p.pixels.y1)};
+  const std::uint64_t covered = covered_pixels(pieces);
+  if (box.area() <= 4 * covered + 4096) {
+    std::vector<Reach> cells(box.area());
+    return sweep(pieces, [&](int x, int y) -> Reach& {
+      return cells[size_t(y - box.y0) * size_t(box.width()) + size_t(x - box.x0)];
+    });
+  }
+  // Pieces scattered over a large box: memory for the pixels they cover only.
+  std::unordered_map<std::uint64_t, Reach> cells;
+  cells.reserve(size_t(std::min<std::uint64_t>(covered, 1u << 24)));
+  return sweep(pieces, [&](int x, int y) -> Reach& { return cells[std::uint64_t(y) << 32 | std::uint32_t(x)]; });
 }
 
 std::vector<std::uint32_t> expected_counts(const PixelRect& window, const std::vector<BatchPiece>& pieces) {
@@ -174,8 +227,12 @@ SampleBatch read_sample_batch(const fs::path& json_path) {
   const DescriptionReader in(json_path);
   json d;
   try {
-    d = json::parse(read_input_file(json_path, "sample batch", kMaxDescriptionBytes));
-  } catch (const json::parse_error& e) {
+    const std::string text = read_input_file(json_path, "sample batch", kMaxDescriptionBytes);
+    // nlohmann's parser takes a NUL byte for the end of the input and would accept whatever follows.
+    if (const size_t nul = text.find('\0'); nul != std::string::npos)
+      in.fail("a NUL byte at offset " + std::to_string(nul) + ": not a sample batch description");
+    d = json::parse(text);
+  } catch (const json::exception& e) {  // a syntax error, or a number beyond double (out_of_range)
     in.fail(std::string("not a sample batch description (malformed JSON: ") + e.what() + ")");
   }
   if (!d.is_object() || !d.contains("format") || d["format"] != kFormat)
@@ -205,6 +262,9 @@ SampleBatch read_sample_batch(const fs::path& json_path) {
       in.fail("a piece's pixels " + format_rect(pixels) + " lie outside the window " + format_rect(batch.window));
     batch.pieces.push_back({pixels, {begin, end}});
   }
+  if (covered_pixels(batch.pieces) > kMaxCoveredPixels)
+    in.fail("its " + std::to_string(batch.pieces.size()) + " pieces cover " + std::to_string(covered_pixels(batch.pieces)) +
+            " pixels in all, more than the " + std::to_string(kMaxCoveredPixels) + " a batch may");
   if (const auto overlap = first_overlap(batch.pieces))
     in.fail("two pieces both hold samples of pixels " +
             format_rect(shared_part(batch.pieces[overlap->first], batch.pieces[overlap->second]).pixels));

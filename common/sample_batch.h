@@ -41,8 +41,14 @@ struct BatchPiece {
 
 // What two pieces both hold: the pixels of both and the samples of both (either may be empty).
 BatchPiece shared_part(const BatchPiece& a, const BatchPiece& b);
-// The first pair (i, j), j < i, of pieces that hold some of the same samples of the same pixels.
+// A pair (i, j), j < i, of pieces that hold some of the same samples of the same pixels, if there
+// is one. Takes O(n log n) plus the pixels the pieces cover (covered_pixels), and memory for the
+// bounding box of their pixels.
 std::optional<std::pair<size_t, size_t>> first_overlap(const std::vector<BatchPiece>& pieces);
+// The pixels of all pieces, counted once per piece: what reading, checking and merging them costs.
+std::uint64_t covered_pixels(const std::vector<BatchPiece>& pieces);
+// More than that is refused (seconds of work: 2^32, e.g. 256 pieces of a 4096 x 4096 image).
+inline constexpr std::uint64_t kMaxCoveredPixels = std::uint64_t(1) << 32;
 
 // What makes batches parts of one render. Two batches merge only when all of it agrees but `scene`,
 // the path as given, which is kept for messages (the same scene may lie elsewhere on each machine).

@@ -150,6 +150,16 @@ inline constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t(64) << 20;
 // The same from text already in memory; `source` names it in messages.
 SceneDescription parse_scene(const std::string& text, const std::string& source);
 
+// Every position a scene gives (vertices, centres, the camera, lights) and every bounded shape's
+// box lie within +-kMaxCoordinate, and sizes are at most that: the squared distances every
+// intersection test forms, the areas emitters are chosen by and the box areas the BVH's costs use
+// then stay finite in float ((2e18)^2 = 4e36 < 3.4e38). The loader refuses anything beyond.
+inline constexpr float kMaxCoordinate = 1e18f;
+
+// The triangles a scene places in the world: a mesh's once for every shape that places it, a
+// quad's two, a triangle's one (what the later stages build and store per triangle).
+std::uint64_t triangle_count(const SceneDescription& scene);
+
 // Largest image side and spp accepted from a scene or the command line. The side is only a bound
 // against overflow; whether this machine can hold the image is checked against its memory before
 // anything is allocated (check_image_fits in common/cli.h).

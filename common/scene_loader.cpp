@@ -7,10 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include <fstream>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
+#include <utility>
 
 namespace rt {
 namespace {
@@ -23,8 +25,9 @@ class Node {
   Node(const Json& value, std::string path, const std::string& source)
       : value_(value), path_(std::move(path)), source_(source) {}
 
+  // Keys and strings are quoted as given, control characters escaped: the message is one line.
   [[noreturn]] void fail(const std::string& problem) const {
-    throw InputError(source_ + ": " + (path_.empty() ? "/" : path_) + ": " + problem);
+    throw InputError(printable(source_ + ": " + (path_.empty() ? "/" : path_) + ": " + problem));
   }
 
   const Json& value() const { return value_; }
@@ -63,29 +66,40 @@ class Node {
   float as_float() const {
     if (!value_.is_number()) fail("expected a number, got " + type_name());
     const double v = value_.get<double>();
-    if (!std::isfinite(v) || std::abs(v) > 3.0e38) fail("number is not finite in float");
+    if (!std::isfinite(v) || std::abs(v) > double(std::numeric_limits<float>::max()))
+      fail("the number " + given() + " is beyond float's range (+-3.4e38)");
     return float(v);
   }
 
   float as_float(float lo, float hi, const char* what) const {
     const float v = as_float();
-    if (!(v >= lo && v <= hi)) fail(std::string(what) + " must be in [" + fmt(lo) + ", " + fmt(hi) + "], got " + fmt(v));
+    if (!(v >= lo && v <= hi)) fail(std::string(what) + " must be in [" + fmt(lo) + ", " + fmt(hi) + "], got " + given());
     return v;
   }
 
-  float as_positive(const char* what) const {
+  // A size: positive in float and at most kMaxCoordinate (scene.h says why).
+  float as_size(const char* what) const {
     const float v = as_float();
-    if (!(v > 0.0f)) fail(std::string(what) + " must be positive, got " + fmt(v));
+    if (!(v > 0.0f))
+      fail(std::string(what) + " must be positive, got " + given() +
+           (value_.get<double>() > 0.0 ? " (0 in float)" : ""));
+    if (v > kMaxCoordinate) fail(std::string(what) + " must be at most 1e18, got " + given());
     return v;
   }
 
-  long long as_int(long long lo, long long hi) const {
-    if (!value_.is_number_integer()) fail("expected an integer, got " + type_name());
-    const long long v = value_.get<long long>();
-    if (v < lo || v > hi)
-      fail("must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(v));
-    return v;
+  // Any integer in [lo, hi]. JSON keeps a non-negative integer unsigned and a negative one signed;
+  // each is compared as it is (std::cmp_*: no wrap-around), and quoted as given.
+  template <class Int>
+  Int as_integer(Int lo, Int hi) const {
+    if (!value_.is_number_integer())
+      fail("expected an integer, got " + type_name() + (value_.is_number() ? " " + given() : ""));
+    const auto in = [&](auto v) { return std::cmp_greater_equal(v, lo) && std::cmp_less_equal(v, hi); };
+    const bool unsigned_value = value_.is_number_unsigned();
+    if (!(unsigned_value ? in(value_.get<std::uint64_t>()) : in(value_.get<std::int64_t>())))
+      fail("must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + given());
+    return unsigned_value ? Int(value_.get<std::uint64_t>()) : Int(value_.get<std::int64_t>());
   }
+  long long as_int(long long lo, long long hi) const { return as_integer<long long>(lo, hi); }
 
   bool as_bool() const {
     if (!value_.is_boolean()) fail("expected true or false, got " + type_name());
@@ -97,19 +111,33 @@ class Node {
     return Vec3(at(0).as_float(), at(1).as_float(), at(2).as_float());
   }
 
+  // A point of the scene: each coordinate within +-kMaxCoordinate (scene.h says why).
+  Vec3 as_position() const {
+    const Vec3 p = as_vec3();
+    for (int i = 0; i < 3; ++i)
+      if (!(std::abs(p[i]) <= kMaxCoordinate))
+        at(size_t(i)).fail("coordinate " + at(size_t(i)).given() + " lies beyond +-1e18, where squared distances overflow float");
+    return p;
+  }
+
+  // A direction of any length but zero, normalized in double, where neither a tiny one nor a huge
+  // one (1e38) under- or overflows its squared length.
   Vec3 as_unit_vector() const {
-    const Vec3 v = as_vec3();
-    if (!(glm::length(v) > 0.0f)) fail("direction must not be zero");
-    return glm::normalize(v);
+    const glm::dvec3 d(as_vec3());
+    if (!(glm::length(d) > 0.0)) fail("direction must not be zero");
+    return Vec3(glm::normalize(d));
   }
 
   Color as_color(float hi, const char* what) const {
     const Vec3 c = as_vec3();
     for (int i = 0; i < 3; ++i)
       if (!(c[i] >= 0.0f && c[i] <= hi))
-        at(size_t(i)).fail(std::string(what) + " must be in [0, " + fmt(hi) + "], got " + fmt(c[i]));
+        at(size_t(i)).fail(std::string(what) + " must be in [0, " + fmt(hi) + "], got " + at(size_t(i)).given());
     return c;
   }
+
+  // The value as the file spells it (for a number, the shortest text that reads back the same).
+  std::string given() const { return value_.dump(); }
 
  private:
   std::string type_name() const { return value_.type_name(); }
@@ -130,7 +158,7 @@ RenderSettings parse_render(const Node& n) {
   if (n.has("width")) r.width = int(n["width"].as_int(1, kMaxImageSide));
   if (n.has("height")) r.height = int(n["height"].as_int(1, kMaxImageSide));
   if (n.has("spp")) r.spp = int(n["spp"].as_int(1, kMaxSpp));
-  if (n.has("seed")) r.seed = std::uint64_t(n["seed"].as_int(0, std::numeric_limits<long long>::max()));
+  if (n.has("seed")) r.seed = n["seed"].as_integer<std::uint64_t>(0, std::numeric_limits<std::uint64_t>::max());
   if (n.has("max_depth")) r.max_depth = int(n["max_depth"].as_int(0, 1000));
   if (n.has("pixel_center_only")) r.pixel_center_only = n["pixel_center_only"].as_bool();
   return r;
@@ -139,17 +167,18 @@ RenderSettings parse_render(const Node& n) {
 CameraSpec parse_camera(const Node& n) {
   n.expect_object({"position", "look_at", "up", "vfov"});
   CameraSpec c;
-  c.position = n["position"].as_vec3();
-  c.look_at = n["look_at"].as_vec3();
-  if (n.has("up")) c.up = n["up"].as_vec3();
+  c.position = n["position"].as_position();
+  c.look_at = n["look_at"].as_position();
+  if (n.has("up")) c.up = n["up"].as_unit_vector();
   c.vfov_degrees = n["vfov"].as_float();
   if (!(c.vfov_degrees > 0.0f && c.vfov_degrees < 180.0f))
     n["vfov"].fail("vertical field of view must be in (0, 180) degrees");
-  if (!(glm::length(c.look_at - c.position) > 0.0f)) n["look_at"].fail("look_at equals position");
-  const Vec3 forward = glm::normalize(c.look_at - c.position);
-  if (!(glm::length(glm::cross(forward, c.up)) > 1e-6f * glm::length(c.up))) {
+  // In double: the camera's frame is built in float later, from these unit vectors.
+  const glm::dvec3 view = glm::dvec3(c.look_at) - glm::dvec3(c.position);
+  if (!(glm::length(view) > 0.0)) n["look_at"].fail("look_at equals position");
+  if (!(glm::length(glm::cross(glm::normalize(view), glm::dvec3(c.up))) > 1e-6)) {
     if (!n.has("up")) n.fail("the default up (0, 1, 0) is parallel to the view direction; give 'up'");
-    n["up"].fail("up must not be zero or parallel to the view direction");
+    n["up"].fail("up must not be parallel to the view direction");
   }
   return c;
 }
@@ -168,7 +197,7 @@ Material parse_material(const Node& n, const std::string& name) {
       const Node c = n["checker"];
       c.expect_object({"albedo", "size"});
       m.checker = Checker{c["albedo"].as_color(1.0f, "albedo (more than 1 creates energy)"),
-                          c["size"].as_positive("checker size")};
+                          c["size"].as_size("checker size")};
     }
   } else if (type == "mirror") {
     n.expect_object({"type", "reflectance", "emission"});
@@ -207,7 +236,7 @@ template <size_t N>
 std::array<Vec3, N> parse_vertices(const Node& n) {
   if (n.expect_array() != N) n.fail("expected " + std::to_string(N) + " vertices");
   std::array<Vec3, N> v;
-  for (size_t i = 0; i < N; ++i) v[i] = n.at(i).as_vec3();
+  for (size_t i = 0; i < N; ++i) v[i] = n.at(i).as_position();
   return v;
 }
 
@@ -223,8 +252,36 @@ Transform parse_transform(const Node& n) {
       s.fail("scale must not be zero on any axis (the mesh would be flat)");
   }
   if (n.has("rotate")) rotate = n["rotate"].as_vec3();
-  if (n.has("translate")) translate = n["translate"].as_vec3();
+  if (n.has("translate")) translate = n["translate"].as_position();
   return Transform::from_scale_rotate_translate(scale, rotate, translate);
+}
+
+// A round shape (sphere, torus, disk) reaches `reach` from its centre in every direction: its box
+// must lie within +-kMaxCoordinate (scene.h).
+void require_inside_limit(const Node& n, Vec3 center, double reach) {
+  for (int i = 0; i < 3; ++i)
+    if (std::abs(double(center[i])) + reach > double(kMaxCoordinate))
+      n.fail("the shape reaches beyond +-1e18 (its centre plus its size), where squared distances overflow float");
+}
+
+// The largest |coordinate| of a mesh's vertices along each axis.
+glm::dvec3 vertex_extent(const TriangleMesh& mesh) {
+  glm::dvec3 extent(0.0);
+  for (const Vec3& p : mesh.positions) extent = glm::max(extent, glm::abs(glm::dvec3(p)));
+  return extent;
+}
+
+// A placed mesh's box: a bound on every coordinate of M p + t over the mesh's vertices p (whose
+// largest coordinates are `extent`), with each term of the float sums the renderer computes
+// bounded by it, so that none of them can overflow.
+void require_placed_mesh_inside_limit(const Node& n, glm::dvec3 extent, const Transform& transform) {
+  for (int i = 0; i < 3; ++i) {
+    double reach = std::abs(double(transform.matrix[3][i]));
+    for (int j = 0; j < 3; ++j) reach += std::abs(double(transform.matrix[j][i])) * extent[j];
+    if (!(reach <= double(kMaxCoordinate)))
+      n.fail("the placed mesh reaches beyond +-1e18 (its vertices scaled, rotated and translated), where squared "
+             "distances overflow float");
+  }
 }
 
 // Meshes named by several shapes are read once.
@@ -233,36 +290,46 @@ class MeshCache {
   explicit MeshCache(std::filesystem::path folder) : folder_(std::move(folder)) {}
   Mesh load(const Node& n) {
     const std::filesystem::path file = (folder_ / n["file"].as_string()).lexically_normal();
-    auto& mesh = meshes_[file.string()];
-    if (!mesh) {
+    Entry& entry = meshes_[file.string()];
+    if (!entry.mesh) {
       try {
-        mesh = std::make_shared<const TriangleMesh>(load_obj(file));
+        entry.mesh = std::make_shared<const TriangleMesh>(load_obj(file));
       } catch (const InputError& e) {
         n["file"].fail(e.what());  // "scene.json: /shapes/3/file: mesh.obj:12: problem"
       }
+      entry.extent = vertex_extent(*entry.mesh);
     }
-    return Mesh{file.string(), mesh, n.has("transform") ? parse_transform(n["transform"]) : Transform{}};
+    const Transform transform = n.has("transform") ? parse_transform(n["transform"]) : Transform{};
+    require_placed_mesh_inside_limit(n, entry.extent, transform);
+    return Mesh{file.string(), entry.mesh, transform};
   }
 
  private:
+  struct Entry {
+    std::shared_ptr<const TriangleMesh> mesh;
+    glm::dvec3 extent{0.0};
+  };
   std::filesystem::path folder_;
-  std::map<std::string, std::shared_ptr<const TriangleMesh>> meshes_;
+  std::map<std::string, Entry> meshes_;
 };
 
 Geometry parse_geometry(const Node& n, const std::string& type, MeshCache& meshes) {
   if (type == "sphere") {
     n.expect_object({"type", "name", "material", "center", "radius"});
-    return Sphere{n["center"].as_vec3(), n["radius"].as_positive("radius")};
+    const Sphere sphere{n["center"].as_position(), n["radius"].as_size("radius")};
+    require_inside_limit(n, sphere.center, sphere.radius);
+    return sphere;
   }
   if (type == "plane") {
     n.expect_object({"type", "name", "material", "point", "normal"});
-    return Plane{n["point"].as_vec3(), n["normal"].as_unit_vector()};
+    return Plane{n["point"].as_position(), n["normal"].as_unit_vector()};
   }
   if (type == "torus") {
     n.expect_object({"type", "name", "material", "center", "axis", "major_radius", "minor_radius"});
-    Torus t{n["center"].as_vec3(), Vec3(0, 1, 0), n["major_radius"].as_positive("major_radius"),
-            n["minor_radius"].as_positive("minor_radius")};
+    Torus t{n["center"].as_position(), Vec3(0, 1, 0), n["major_radius"].as_size("major_radius"),
+            n["minor_radius"].as_size("minor_radius")};
     if (n.has("axis")) t.axis = n["axis"].as_unit_vector();
+    require_inside_limit(n, t.center, double(t.major_radius) + double(t.minor_radius));
     return t;
   }
   if (type == "triangle") {
@@ -279,7 +346,9 @@ Geometry parse_geometry(const Node& n, const std::string& type, MeshCache& meshe
   }
   if (type == "disk") {
     n.expect_object({"type", "name", "material", "center", "normal", "radius"});
-    return Disk{n["center"].as_vec3(), n["normal"].as_unit_vector(), n["radius"].as_positive("radius")};
+    const Disk disk{n["center"].as_position(), n["normal"].as_unit_vector(), n["radius"].as_size("radius")};
+    require_inside_limit(n, disk.center, disk.radius);
+    return disk;
   }
   n["type"].fail("unknown shape type '" + type + "' (known: sphere, plane, torus, triangle, quad, mesh, disk)");
 }
@@ -288,12 +357,15 @@ PointLight parse_light(const Node& n) {
   n.expect_object({"type", "position", "intensity"});
   if (n["type"].as_string() != "point")
     n["type"].fail("unknown light type '" + n["type"].as_string() + "' (known: point)");
-  return PointLight{n["position"].as_vec3(), n["intensity"].as_color(3.0e38f, "intensity")};
+  return PointLight{n["position"].as_position(), n["intensity"].as_color(3.0e38f, "intensity")};
 }
 
 }  // namespace
 
 SceneDescription parse_scene(const std::string& text, const std::string& source) {
+  // nlohmann's parser takes a NUL byte for the end of the input and would accept whatever follows.
+  if (const size_t nul = text.find('\0'); nul != std::string::npos)
+    throw InputError(printable(source) + ": a NUL byte at offset " + std::to_string(nul) + ": not a JSON text file");
   Json json;
   try {
     json = Json::parse(text);
@@ -303,7 +375,7 @@ SceneDescription parse_scene(const std::string& text, const std::string& source)
     std::string what = e.what();
     const size_t tag_end = what.find("] ");
     if (tag_end != std::string::npos) what = what.substr(tag_end + 2);
-    throw InputError(source + ": malformed JSON: " + what);
+    throw InputError(printable(source + ": malformed JSON: " + what));
   }
   const Node root(json, "", source);
   root.expect_object({"render", "camera", "background", "materials", "shapes", "lights"});
@@ -345,6 +417,16 @@ SceneDescription parse_scene(const std::string& text, const std::string& source)
     for (size_t i = 0; i < light_count; ++i) scene.lights.push_back(parse_light(lights.at(i)));
   }
   return scene;
+}
+
+std::uint64_t triangle_count(const SceneDescription& scene) {
+  std::uint64_t triangles = 0;
+  for (const Shape& shape : scene.shapes) {
+    if (const Mesh* mesh = std::get_if<Mesh>(&shape.geometry)) triangles += mesh->mesh->triangles.size();
+    if (std::holds_alternative<Quad>(shape.geometry)) triangles += 2;
+    if (std::holds_alternative<Triangle>(shape.geometry)) triangles += 1;
+  }
+  return triangles;
 }
 
 SceneDescription load_scene(const std::filesystem::path& path) {

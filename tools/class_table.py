@@ -10,7 +10,9 @@ folder's name. With --submissions, every sub-folder of DIR is a student too, so 
 grading job failed before it made a grade folder is not forgotten. A student without a readable
 results.json (the grading job failed or has not run) gets a row that says so, and a line on
 stderr; the tables are still written whole, and the exit code is then 1 so that a scheduler's
-dependent job notices. Only the standard library is used.
+dependent job notices. So does a results.json that is not consistent with itself (a total that is
+not the sum of its tests, a test above its maximum): a table of a whole class takes no total on
+trust. Only the standard library is used.
 """
 import argparse
 import csv
@@ -62,6 +64,7 @@ def read_row(student, folder):
             row["stages"][stage] = (score + float(test["score"]), points + float(test["max_score"]))
         row["score"] = float(results["score"])
         row["max_score"] = sum(points for _, points in row["stages"].values())
+        row["problem"] = inconsistency(results, row)
         row["time"] = results.get("execution_time")
         board = {entry["name"]: entry["value"] for entry in results.get("leaderboard", [])}
         row["rays"] = board.get("BVH rays/s")
@@ -70,6 +73,24 @@ def read_row(student, folder):
     except (OSError, ValueError, KeyError, TypeError) as e:
         row["problem"] = f"{path}: unreadable results ({type(e).__name__}: {e})"
     return row
+
+
+def inconsistency(results, row):
+    """Why a results.json cannot be the grader's, or None. The grader writes it where no submission
+    can, but a table of a whole class should not take a total on trust: it must be the sum of the
+    tests' scores, none of them negative or above its maximum."""
+    tests = results["tests"]
+    if not tests:
+        return f"{row['folder'] / 'results.json'}: inconsistent results: no tests, yet a score of {row['score']:g}"
+    for test in tests:
+        if not 0 <= float(test["score"]) <= float(test["max_score"]):
+            return (f"{row['folder'] / 'results.json'}: inconsistent results: {test['name']} scores "
+                    f"{float(test['score']):g} of {float(test['max_score']):g}")
+    total = sum(float(test["score"]) for test in tests)
+    if abs(total - row["score"]) > 0.01 * len(tests) + 1e-9:
+        return (f"{row['folder'] / 'results.json'}: inconsistent results: a score of {row['score']:g}, but its tests "
+                f"add up to {total:g}")
+    return None
 
 
 def stage_header(stage):

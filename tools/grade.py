@@ -1,26 +1,35 @@
 #!/usr/bin/env python3
-"""Grades a tree (this one, the starter, or a student's) for one stage or all.
+"""Grades a submission (a student's tree, the starter, or this one) for one stage or all.
 
     tools/grade.py TREE [--stage N ...] [--out DIR] [--work DIR] [--jobs N] [--no-hidden]
+                   [--time-cap S] [--test-timeout S] [--render-timeout S] [--memory-limit MIB]
+                   [--container-is-sandbox] [--sandbox-user UID]
     tools/grade.py --make-references [--build DIR]
+    tools/grade.py --list-tests [--build DIR]
 
-It copies TREE to a work folder with the instructor's tests (hidden ones included) and assets,
-builds it (release, stage by stage, so a stage that does not compile costs only its own points),
-runs each stage's tests with a time limit per test, checks the stage programs' renders against the
-references by statistics, measures the BVH's speed for the leaderboard, and scores everything from
-grading/manifest.json. It writes DIR/results.json (Gradescope's autograder format), DIR/report.md
-and DIR/report.html, and prints the total. Exit code 0 when grading ran (whatever the score), 1
-when it could not (no such tree, no cmake).
+It takes from TREE only the files students edit (the stage sources with task regions; anything
+else, links and oversized files refused, comes from this tree: tools/grading/submission.py), builds
+the result stage by stage in a sandbox (tools/grading/sandbox.py: bubblewrap, no network, its own
+PID namespace, a read-only view but for one scratch folder, limits on memory, CPU time, file size
+and processes), runs exactly the tests grading/tests.json lists, each in a sandbox of its own and
+passed only when GoogleTest's own report says so, checks the stage programs' renders against the
+references by statistics, measures the BVH's speed for the leaderboard, all within one time cap
+for the whole submission, and scores everything from grading/manifest.json. It writes, outside
+the sandbox and atomically, DIR/results.json (Gradescope's autograder format), DIR/report.md,
+DIR/report.html and DIR/outcomes.json, and prints the total. Exit code 0 when grading ran (whatever
+the score), 1 when it could not (no such tree, no cmake, no sandbox).
 
---make-references renders the references of the render checks with this tree's own release build
-(build/release by default) into grading/references/. docs/instructors.md has the whole workflow.
+--make-references renders the render checks' references with this tree's own release build
+(build/release by default) into grading/references/; --list-tests writes grading/tests.json from
+it. docs/instructors.md has the whole workflow.
 """
 import argparse
+import json
+import os
 import pathlib
 import shutil
 import sys
 import tempfile
-import time
 
 try:
     import numpy  # noqa: F401  (the render checks' statistics)
@@ -28,50 +37,67 @@ except ModuleNotFoundError:
     sys.exit(f"tools/grade.py: this Python ({sys.executable}) has no numpy; run the grader with "
              "Debian's /usr/bin/python3, which has it once tools/setup.sh installed python3-numpy")
 
-from grading import build, manifest, renders, report
+from grading import build, files, manifest, renders, report, sandbox, submission
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 MANIFEST = ROOT / "grading" / "manifest.json"
+TESTS = ROOT / "grading" / "tests.json"
 
 
-def grade(tree, stages, out, work, jobs, hidden):
+def grade(tree, stages, out, work, options):
     spec = manifest.load(MANIFEST)
+    listed = manifest.load_tests(TESTS, options.hidden)
     stages = stages or sorted(spec["stages"])
-    start = time.monotonic()
+    deadline = sandbox.Deadline(options.time_cap)
     work = pathlib.Path(work)
     work.mkdir(parents=True, exist_ok=True)
-    source = build.prepare_tree(tree, ROOT, work)
-    if not hidden:
-        shutil.rmtree(source / "tests" / "hidden", ignore_errors=True)
-    binary = work / "build"
+    work.chmod(0o755)
+    box = sandbox.Sandbox(sandbox.Limits(memory_bytes=options.memory_limit << 20), options.container_is_sandbox,
+                          options.sandbox_user)
+    box.check(work)
+    taken = submission.take(tree, ROOT, spec)
+    builder = build.Builder(box, work, options.jobs, deadline)
+    build.prepare_tree(taken, ROOT, builder.source, options.hidden)
     log = work / "build.log"
     log.write_text("")
-    configured = build.configure(source, binary, log)
-    grade = {"tree": str(tree), "groups": [], "renders": [], "tests": [], "unclaimed": [], "build_problems": {}}
+    configured = builder.configure(log)
+    grade = {"tree": str(tree), "groups": [], "renders": [], "tests": [], "unclaimed": [], "build_problems": {},
+             "hidden_build_problems": {}, "notes": taken.notes, "flags": taken.flags, "time_cap": options.time_cap}
     for stage in stages:
         stage_spec = spec["stages"][stage]
         problem = None
         stage_log = work / f"stage{stage}.log"
         stage_log.write_text("")
         if not configured:
-            problem = "cmake could not configure the tree:\n" + log.read_text()[-3000:]
-        elif not build.build_stage(binary, stage, stage_log, jobs):
-            problem = "the stage did not build:\n" + stage_log.read_text()[-3000:]
+            problem = "cmake could not configure the tree:\n" + files.tail_of(log, 3000)
+        elif not builder.build_stage(stage, stage_log):
+            problem = "the stage did not build:\n" + files.tail_of(stage_log, 3000)
         if problem:
             grade["build_problems"][stage] = problem
-        results = {} if problem else build.run_stage_tests(binary, stage, work / f"junit-stage{stage}.xml", stage_log,
-                                                            jobs, spec.get("test_timeout_seconds", 120))
-        if not hidden:
+        tests = [t for t in listed.get(stage, []) if not t["program"].endswith("_hidden_tests")]
+        hidden_tests = [t for t in listed.get(stage, []) if t["program"].endswith("_hidden_tests")]
+        results = {} if problem else builder.run_tests(tests, work / f"logs-stage{stage}", options.test_timeout)
+        if hidden_tests and not problem:
+            hidden_log = work / f"stage{stage}-hidden.log"
+            hidden_log.write_text("")
+            if builder.build_hidden(stage, hidden_log):
+                results.update(builder.run_tests(hidden_tests, work / f"logs-stage{stage}-hidden", options.test_timeout))
+            else:
+                grade["hidden_build_problems"][stage] = files.tail_of(hidden_log, 3000)
+        if not options.hidden:
             stage_spec = dict(stage_spec, groups=[g for g in stage_spec["groups"] if not g.get("hidden")])
-        groups, unclaimed = manifest.score_stage(stage, stage_spec, results, problem)
+        hidden_problem = "the hidden tests did not build (the log is in the instructor's report)" \
+            if stage in grade["hidden_build_problems"] else None
+        groups, unclaimed, outcomes = manifest.score_stage(stage, stage_spec, listed.get(stage, []), results,
+                                                           problem or hidden_problem)
         grade["groups"] += groups
         group_of = {name: g.tests for g in groups for name in g.members}
         grade["tests"] += [{"stage": stage, "name": r.name, "passed": r.passed, "seconds": r.seconds,
                             "group": group_of.get(r.name), "output": "" if r.passed else report.clip(r.output)}
-                           for r in results.values()]
+                           for r in outcomes.values()]
         grade["unclaimed"] += unclaimed
         for check in stage_spec.get("renders", []):
-            grade["renders"].append(renders.check_render(binary / "bin", source, ROOT, stage, check))
+            grade["renders"].append(renders.check_render(builder, ROOT, stage, check))
         print(f"grade: stage {stage}: {sum(g.score for g in groups) + sum(r.score for r in grade['renders'] if r.stage == stage):.2f}"
               f" of {sum(g.points for g in groups) + sum(r.points for r in grade['renders'] if r.stage == stage):g}",
               flush=True)
@@ -80,57 +106,101 @@ def grade(tree, stages, out, work, jobs, hidden):
     board = spec.get("leaderboard")
     stage_renders = [r for r in grade["renders"] if board and r.stage == board["stage"]]
     if stage_renders and all(r.score == r.points for r in stage_renders):
-        grade["rays_per_second"], _ = renders.bvh_rays_per_second(binary / "bin", source, board)
+        grade["rays_per_second"], _ = renders.bvh_rays_per_second(builder, board)
     total = sum(g.score for g in grade["groups"]) + sum(r.score for r in grade["renders"])
     possible = sum(g.points for g in grade["groups"]) + sum(r.points for r in grade["renders"])
-    grade["seconds"] = time.monotonic() - start
+    grade["seconds"] = deadline.elapsed()
+    grade["cap_reached"] = deadline.reached()
     grade["summary"] = f"{total:.2f} of {possible:g} points (stages {', '.join(map(str, stages))})"
     report.write_reports(grade, out)
-    print(f"grade: {grade['summary']}; reports in {out}")
+    print(f"grade: {grade['summary']}; {grade['seconds']:.0f} s of the {options.time_cap:g} s cap"
+          f"{' (reached)' if grade['cap_reached'] else ''}; reports in {out}")
     return grade
 
 
-def make_references(build_dir):
+def instructor_builder(build_dir, scratch, box):
+    """A Builder over this tree's own build (the instructor's programs), for references and lists."""
+    builder = build.Builder(box, scratch, 1, sandbox.Deadline(3600))
+    builder.source, builder.build = ROOT, pathlib.Path(build_dir).resolve()
+    return builder
+
+
+def make_references(build_dir, box):
     spec = manifest.load(MANIFEST)
-    for stage in sorted(spec["stages"]):
-        for check in spec["stages"][stage].get("renders", []):
-            print(f"grade: reference for stage {stage}, {check['name']} ({check.get('reference_runs', 1)} runs)", flush=True)
-            renders.make_reference(pathlib.Path(build_dir) / "bin", ROOT, check)
+    with tempfile.TemporaryDirectory(prefix="grade-references-") as scratch:
+        os.chmod(scratch, 0o755)
+        builder = instructor_builder(build_dir, scratch, box)
+        for stage in sorted(spec["stages"]):
+            for check in spec["stages"][stage].get("renders", []):
+                print(f"grade: reference for stage {stage}, {check['name']} ({check.get('reference_runs', 1)} runs)", flush=True)
+                renders.make_reference(builder, ROOT, check)
+
+
+def write_test_list(build_dir):
+    listed = build.list_tests(build_dir)
+    about = ("Every test the grader runs and scores, per stage, with its test program: made from the instructor's "
+             "build by tools/grade.py --list-tests; ctest grading_test_list checks it is current.")
+    files.write_atomically(TESTS, json.dumps({"about": about, "stages": listed}, indent=1) + "\n")
+    print(f"grade: wrote {TESTS} ({sum(map(len, listed.values()))} tests)")
 
 
 def main():
-    parser = argparse.ArgumentParser(description="Grade a tree of the ray tracing course.")
-    parser.add_argument("tree", nargs="?", help="the tree to grade (a folder with CMakeLists.txt)")
+    parser = argparse.ArgumentParser(description="Grade a submission of the ray tracing course.")
+    parser.add_argument("tree", nargs="?", help="the submission to grade (a folder with the course's layout)")
     parser.add_argument("--stage", type=int, action="append", help="grade this stage (repeatable; default all)")
     parser.add_argument("--out", default="grade-report", help="folder for the reports (default grade-report)")
-    parser.add_argument("--work", help="folder for the copy and its build (default: a temporary one)")
+    parser.add_argument("--work", help="folder for the graded tree and its build (default: a temporary one)")
     parser.add_argument("--jobs", type=int, default=2, help="parallel build and test jobs (default 2)")
-    parser.add_argument("--no-hidden", action="store_true", help="leave the hidden tests out (a student's self-check)")
+    parser.add_argument("--no-hidden", dest="hidden", action="store_false",
+                        help="leave the hidden tests out (a student's self-check)")
+    parser.add_argument("--time-cap", type=float, default=1800,
+                        help="seconds for the whole submission: builds, tests, renders (default 1800)")
+    parser.add_argument("--test-timeout", type=float, help="seconds per test (default: the manifest's)")
+    parser.add_argument("--memory-limit", type=int, default=4096, help="MiB of address space per process (default 4096)")
+    parser.add_argument("--container-is-sandbox", action="store_true",
+                        help="run without bubblewrap: this container is the isolation (docs/instructors.md)")
+    parser.add_argument("--sandbox-user", type=int, help="uid the steps run as when the grader is root (default 65534)")
     parser.add_argument("--make-references", action="store_true", help="render the render checks' references")
-    parser.add_argument("--build", default=str(ROOT / "build" / "release"), help="build used by --make-references")
+    parser.add_argument("--list-tests", action="store_true", help="write grading/tests.json from --build")
+    parser.add_argument("--build", default=str(ROOT / "build" / "release"), help="build for --make-references, --list-tests")
     args = parser.parse_args()
-    if args.make_references:
-        make_references(args.build)
-        return 0
-    if not args.tree:
-        parser.error("give the tree to grade")
-    tree = pathlib.Path(args.tree)
-    if not (tree / "CMakeLists.txt").is_file():
-        print(f"grade: {tree}: not a tree of this course (no CMakeLists.txt)", file=sys.stderr)
+    box = sandbox.Sandbox(container_is_sandbox=args.container_is_sandbox, user=args.sandbox_user)
+    try:
+        if args.list_tests:
+            write_test_list(args.build)
+            return 0
+        if args.make_references:
+            make_references(args.build, box)
+            return 0
+        if not args.tree:
+            parser.error("give the tree to grade")
+        tree = pathlib.Path(args.tree)
+        if not tree.is_dir():
+            print(f"grade: {tree}: not a folder", file=sys.stderr)
+            return 1
+        if shutil.which("cmake") is None or shutil.which("ninja") is None:
+            print("grade: cmake and ninja are needed (tools/setup.sh installs them)", file=sys.stderr)
+            return 1
+        spec = manifest.load(MANIFEST)
+        unknown = [s for s in args.stage or [] if s not in spec["stages"]]
+        if unknown:
+            print(f"grade: {MANIFEST}: no stage {unknown[0]}", file=sys.stderr)
+            return 1
+        args.test_timeout = args.test_timeout or spec.get("test_timeout_seconds", 120)
+        out = pathlib.Path(args.out).resolve()
+        if args.work:
+            work = pathlib.Path(args.work).resolve()
+            if out == work or work in out.parents:
+                print(f"grade: --out {args.out} lies inside --work {args.work}, where the submission's code writes",
+                      file=sys.stderr)
+                return 1
+            grade(tree, args.stage, out, work, args)
+        else:
+            with tempfile.TemporaryDirectory(prefix="grade-") as work:
+                grade(tree, args.stage, out, work, args)
+    except sandbox.SandboxError as e:
+        print(f"grade: {e}", file=sys.stderr)
         return 1
-    if shutil.which("cmake") is None or shutil.which("ctest") is None:
-        print("grade: cmake and ctest are needed (tools/setup.sh installs them)", file=sys.stderr)
-        return 1
-    spec = manifest.load(MANIFEST)
-    unknown = [s for s in args.stage or [] if s not in spec["stages"]]
-    if unknown:
-        print(f"grade: {MANIFEST}: no stage {unknown[0]}", file=sys.stderr)
-        return 1
-    if args.work:
-        grade(tree, args.stage, args.out, args.work, args.jobs, not args.no_hidden)
-    else:
-        with tempfile.TemporaryDirectory(prefix="grade-") as work:
-            grade(tree, args.stage, args.out, work, args.jobs, not args.no_hidden)
     return 0
 
 

@@ -14,12 +14,15 @@ handed out: a kept solution would give away a later assignment, and the placehol
 every stage building and running. --others keep is for a class that starts mid-course: e.g.
 --stages 3-5 --others keep hands out stages 1 and 2 solved.
 
-Instructor-only material never goes in: the hidden tests (tests/hidden/), the grader's own proofs
-(tests/grading/, which plant bugs into solutions) and the repository's CI (.ci/). Only files git
-tracks or would track are copied (no build folders). Exits 1 with one line if DEST exists (unless
+Instructor-only material never goes in: the hidden tests (tests/hidden/) and their names in
+grading/tests.json, the render checks' references (grading/references/: a stored answer a program
+could write instead of rendering), the grader's own proofs (tests/grading/, which plant bugs into
+solutions) and the repository's CI (.ci/). Only files git tracks or would track are copied (no
+build folders). Exits 1 with one line if DEST exists (unless
 --force) or the markers are malformed.
 """
 import argparse
+import json
 import pathlib
 import shutil
 import subprocess
@@ -27,7 +30,7 @@ import sys
 
 import task_regions
 
-INSTRUCTOR_ONLY = ("tests/hidden/", "tests/grading/", ".ci/")
+INSTRUCTOR_ONLY = ("tests/hidden/", "tests/grading/", ".ci/", "grading/references/")
 
 
 def parse_stages(text):
@@ -85,6 +88,14 @@ def tracked_files(root):
     return [f for f in listing if f and not f.startswith(INSTRUCTOR_ONLY)]
 
 
+def without_hidden_tests(text):
+    """grading/tests.json without the hidden tests' names."""
+    listed = json.loads(text)
+    listed["stages"] = {stage: [t for t in tests if not t["program"].endswith("_hidden_tests")]
+                        for stage, tests in listed["stages"].items()}
+    return json.dumps(listed, indent=1) + "\n"
+
+
 def make_starter(root, dest, stages):
     root, dest = pathlib.Path(root).resolve(), pathlib.Path(dest)
     problems = []
@@ -104,6 +115,8 @@ def make_starter(root, dest, stages):
         target.parent.mkdir(parents=True, exist_ok=True)
         if name in stripped:
             target.write_text(stripped[name])
+        elif name == "grading/tests.json":
+            target.write_text(without_hidden_tests(source.read_text()))
         else:
             shutil.copy2(source, target)
     return len(stripped)

@@ -18,6 +18,7 @@ packages=(
   libembree-dev                   # Embree: the production ceiling in the stage-3 benchmarks (optional to the build)
   python3-matplotlib              # charts (tools/make-charts.sh)
   python3-numpy                   # the grader's image statistics (tools/grade.py)
+  bubblewrap                      # the grader's sandbox (tools/grading/sandbox.py)
   clang libclang-rt-14-dev        # libFuzzer for the fuzz targets (preset fuzz, tests/fuzz/run.sh)
 )
 

@@ -16,51 +16,80 @@
 #include "common/scene.h"
 #include "common/task.h"
 
+#include <algorithm>
+#include <cstdint>
+
 namespace rt {
 
-// `radiance(ray, rng)` returns the radiance arriving along the camera ray, drawing any further
-// random numbers it needs from `rng` (the stream after the pixel offset's two numbers).
+// Task stage1.render.pixel_samples: adds samples [begin, end) of pixel (x, y) to `sum` and returns
+// how many it added. Sample k is the camera ray through (x + u, y + v), (u, v) the first two numbers
+// of SamplerType(seed, pixel index, first_sample + k): the same numbers whichever run, thread or
+// pass takes the sample. `radiance(ray, rng)` returns the radiance arriving along the ray, drawing
+// any further numbers from the same `rng`. A stop request (common/interrupt.h) ends the loop
+// between two samples: the pixel keeps the samples it finished.
+template <class SamplerType, class RadianceFn>
+int add_pixel_samples(const PinholeCamera& camera, const RenderSettings& settings, int x, int y, int begin, int end,
+                      RadianceFn&& radiance, Color& sum) {
+  const std::uint64_t pixel_index = std::uint64_t(y) * std::uint64_t(camera.width) + std::uint64_t(x);
+  int added = 0;
+  // BEGIN TASK stage1.render.pixel_samples
+  for (int k = begin; k < end && !interrupt_requested(); ++k, ++added) {
+    SamplerType rng(settings.seed, pixel_index, std::uint64_t(settings.first_sample + k));
+    const Vec2 offset = settings.pixel_center_only ? Vec2(0.5f) : rng.uniform2();
+    const Ray ray = generate_camera_ray(camera, Vec2(float(x), float(y)) + offset);
+    sum += radiance(ray, rng);
+  }
+  // PLACEHOLDER
+  // report_unfinished_task("stage1.render.pixel_samples");
+  // if (begin == 0) {  // one ray through the pixel's centre, in the first pass only
+  //   SamplerType rng(settings.seed, pixel_index, 0);
+  //   sum = radiance(generate_camera_ray(camera, Vec2(x + 0.5f, y + 0.5f)), rng);
+  //   added = 1;
+  // }
+  // (void)end;
+  // END TASK
+  return added;
+}
+
+// Samples per pass over the image (render_samples): enough that a pass holds at least 2^16
+// samples, so the per-pass start of the worker threads (some 50 us) stays under 1% of a pass for
+// any stage; one sample per pixel from 256 x 256 pixels up.
+inline int samples_per_pass(std::int64_t pixels, int spp) {
+  constexpr std::int64_t kSamplesPerPass = std::int64_t(1) << 16;
+  return int(std::clamp<std::int64_t>((kSamplesPerPass + pixels - 1) / std::max<std::int64_t>(pixels, 1), 1, spp));
+}
+
 // Renders samples [first_sample, first_sample + spp) of each pixel of `settings.window()` and
 // returns, per pixel of that window, their sum and number (the window's pixel (0, 0) is the
-// image's (x0, y0)). `progress`, if given, is advanced by the samples of each finished tile (fewer
-// than asked for after a stop request, which is how the program knows how much it has).
-// `SamplerType` makes each sample's numbers from (seed, pixel, sample index): Rng (independent
-// random numbers) unless a later stage passes another.
+// image's (x0, y0)). The samples are taken in passes over the whole window, samples_per_pass of
+// each pixel a pass, so a render stopped by Ctrl-C is a whole image with (almost) the same number
+// of samples in every pixel, not a few finished pixels. Each pixel still adds its samples in the
+// order k = 0, 1, 2, ... whichever thread takes its tile in each pass, so the image is the same bit
+// for bit for any thread count and any pass size. `progress`, if given, is advanced by the samples
+// each tile finishes (fewer than asked for after a stop request, which is how the program knows how
+// much it has). `SamplerType` makes each sample's numbers from (seed, pixel, sample index): Rng
+// (independent random numbers) unless a later stage passes another.
 template <class SamplerType = Rng, class RadianceFn>
 SampleSums render_samples(const PinholeCamera& camera, const RenderSettings& settings, int threads,
                           RadianceFn&& radiance, ProgressBar* progress = nullptr) {
   const PixelRect window = settings.window();
   SampleSums sums(window.width(), window.height());
-  parallel_for_tiles(window.width(), window.height(), threads, [&](const Tile& tile) {
-    std::uint64_t tile_samples = 0;
-    for (int ty = tile.y0; ty < tile.y1; ++ty)
-      for (int tx = tile.x0; tx < tile.x1; ++tx) {
-        // After Ctrl-C (common/interrupt.h) the pixels not yet started keep no samples.
-        if (interrupt_requested()) continue;
-        const int x = window.x0 + tx, y = window.y0 + ty;  // the pixel in the whole image
-        const std::uint64_t pixel_index = std::uint64_t(y) * std::uint64_t(camera.width) + std::uint64_t(x);
-        Color sum(0.0f);
-        int finished = 0;  // samples this pixel completed
-        // BEGIN TASK stage1.render.pixel_samples
-        // A stop request ends the loop between two samples; the pixel then keeps the samples it
-        // has, so a stopped render is a correct, noisier image.
-        for (; finished < settings.spp && !interrupt_requested(); ++finished) {
-          SamplerType rng(settings.seed, pixel_index, std::uint64_t(settings.first_sample + finished));
-          const Vec2 offset = settings.pixel_center_only ? Vec2(0.5f) : rng.uniform2();
-          const Ray ray = generate_camera_ray(camera, Vec2(float(x), float(y)) + offset);
-          sum += radiance(ray, rng);
+  const int per_pass = samples_per_pass(window.area(), settings.spp);
+  for (int begin = 0; begin < settings.spp && !interrupt_requested(); begin += per_pass) {
+    const int end = std::min(settings.spp, begin + per_pass);
+    parallel_for_tiles(window.width(), window.height(), threads, [&](const Tile& tile) {
+      std::uint64_t tile_samples = 0;
+      for (int ty = tile.y0; ty < tile.y1; ++ty)
+        for (int tx = tile.x0; tx < tile.x1; ++tx) {
+          Color sum = sums.sum(tx, ty);
+          const int added = add_pixel_samples<SamplerType>(camera, settings, window.x0 + tx, window.y0 + ty, begin,
+                                                           end, radiance, sum);
+          sums.set(tx, ty, sum, sums.count(tx, ty) + std::uint32_t(added));
+          tile_samples += std::uint64_t(added);
         }
-        // PLACEHOLDER
-        // report_unfinished_task("stage1.render.pixel_samples");
-        // Rng rng(settings.seed, pixel_index, 0);
-        // sum = radiance(generate_camera_ray(camera, Vec2(x + 0.5f, y + 0.5f)), rng);
-        // finished = 1;
-        // END TASK
-        sums.set(tx, ty, sum, std::uint32_t(finished));
-        tile_samples += std::uint64_t(finished);
-      }
-    if (progress) progress->advance(tile_samples);
-  });
+      if (progress) progress->advance(tile_samples);
+    });
+  }
   return sums;
 }
 

@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
                 {"integer-ulp", OffsetMethod::integer_ulp},
                 {"fixed", OffsetMethod::fixed}}));
         app.add_option("--epsilon", whitted.offset.epsilon, "Offset distance for --offset fixed")
-            ->check(CLI::Range(0.0f, 3.0e38f));
+            ->check(finite_range(0.0, 3.0e38));
         app.add_option("--triangle", triangle_method,
                        "Ray-triangle test: watertight (default) or moller-trumbore")
             ->transform(CLI::CheckedTransformer(std::map<std::string, TriangleMethod>{

@@ -73,9 +73,13 @@ Iterator split_middle(Iterator begin, Iterator end, int axis, const Aabb& centro
 Iterator split_sah(Iterator begin, Iterator end, const Aabb& node_bounds, const Aabb& centroid_bounds,
                    int max_leaf_size) {
   constexpr int kBins = BvhBuildOptions::kSahBins;
+  // Clamped in float before the conversion: int(NaN) or int(inf) is undefined behaviour, and a box
+  // whose extent overflowed to inf would give 0 * inf = NaN (the loader keeps scenes within
+  // kMaxCoordinate, common/scene.h; this keeps the builder safe for any input anyway).
   auto bin_of = [&](const BuildPrimitive& p, int axis) {
     const float lo = centroid_bounds.lo[axis], extent = centroid_bounds.extent()[axis];
-    return std::min(kBins - 1, int(float(kBins) * ((p.centroid[axis] - lo) / extent)));
+    const float bin = float(kBins) * ((p.centroid[axis] - lo) / extent);
+    return bin >= 0.0f ? int(std::min(bin, float(kBins - 1))) : 0;
   };
   float best_area_count = kInfinity;
   int best_axis = -1, best_boundary = 0;

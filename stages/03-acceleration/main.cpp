@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
         app.add_option("--accel", accel_name, "Acceleration structure: naive (every primitive), median, middle or sah")
             ->check(CLI::IsMember({"naive", "median", "middle", "sah"}));
         app.add_option("--leaf-size", leaf_size, "Largest leaf a BVH builder makes without trying to split")
-            ->check(CLI::Range(1, 255));
+            ->transform(decimal(1, 255));
         app.add_flag("--wide", wide, "Traverse a 4-wide tree collapsed from the binary one (four box tests at once)");
         app.add_option("--debug", debug_name, "Debug view instead of shading: none, normal, depth, albedo")
             ->check(CLI::IsMember({"none", "normal", "depth", "albedo"}));

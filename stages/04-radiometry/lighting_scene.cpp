@@ -5,6 +5,9 @@
 #include "03-acceleration/bvh_aggregate.h"
 #include "common/error.h"
 
+#include <cmath>
+#include <limits>
+
 namespace rt {
 
 namespace {
@@ -65,8 +68,18 @@ LightingScene::LightingScene(const SceneDescription& description, const Lighting
       throw InputError(description.source + ": /shapes/" + std::to_string(i) +
                        ": an emitting plane would have infinite power; use a quad or a disk");
   }
+  // Emitters are chosen by power, Phi = pi Le A: an overflow to inf there would make every pdf
+  // NaN and every pixel NaN. The sum is formed in double, as the distribution's total is in float.
   std::vector<float> power;
-  for (const AreaEmitter& e : emitters_) power.push_back(e.power());
+  double total = 0.0;
+  for (const AreaEmitter& e : emitters_) {
+    power.push_back(e.power());
+    total += double(power.back());
+    if (!std::isfinite(power.back()) || total > double(std::numeric_limits<float>::max()))
+      throw InputError(description.source + ": /shapes/" + std::to_string(e.shape) +
+                       ": the emitted power (pi x radiance x area) overflows float: make the emitters dimmer or "
+                       "smaller");
+  }
   emitter_distribution_ = DiscreteDistribution(power);
 }
 

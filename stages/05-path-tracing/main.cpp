@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
             ->transform(CLI::CheckedTransformer(integrators));
         app.add_option("--roulette-start", path.roulette_start,
                        "Bounces before Russian roulette may end a path (rr, nee, mis; default 4)")
-            ->check(CLI::Range(0, 1000));
+            ->transform(decimal(0, 1000));
         app.add_option("--sampler", sampler, "independent (random numbers) or sobol (scrambled Sobol, the default)")
             ->transform(CLI::CheckedTransformer(std::map<std::string, SamplerKind>{
                 {sampler_name(SamplerKind::independent), SamplerKind::independent},

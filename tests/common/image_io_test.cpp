@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
+#include <csignal>
 #include <cstring>
 
 namespace rt {
@@ -120,11 +123,21 @@ TEST(ImageFiles, FailedWriteLeavesNoFileAndKeepsTheOldOne) {
   EXPECT_FALSE(std::filesystem::exists(dir / "no-such-dir"));
 
   // Make the write itself fail, in a way that holds for root too (permissions do not stop root):
-  // occupy the temporary file's name (common/file_io.cpp: "<path>.tmp<pid>") with a directory.
+  // a file size limit of 16 bytes, less than the PFM, with SIGXFSZ ignored so write(2) fails.
   write_image(dir / "keep.pfm", Image(1, 1, Color(3.0f)));
-  std::filesystem::create_directory(dir / ("keep.pfm.tmp" + std::to_string(::getpid())));
+  rlimit saved{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
+  rlimit tiny = saved;
+  tiny.rlim_cur = 16;
+  const auto previous = std::signal(SIGXFSZ, SIG_IGN);
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &tiny), 0);
   EXPECT_THROW(write_image(dir / "keep.pfm", Image(1, 1, Color(4.0f))), InputError);
+  ::setrlimit(RLIMIT_FSIZE, &saved);
+  std::signal(SIGXFSZ, previous);
   EXPECT_EQ(read_pfm(dir / "keep.pfm").at(0, 0), Color(3.0f)) << "the old file must survive intact";
+  int files = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
+  EXPECT_EQ(files, 1) << "the failed write's temporary file must be gone";
 }
 
 TEST(ImageFiles, AtomicWriteLeavesNoTemporaryFiles) {

@@ -13,15 +13,23 @@ suite; it takes about half an hour on 2 cores, most of it building trees.
  4. Each planted bug (a wrong sign in the sphere quadratic, a BVH that skips the far child, a
     missing 1/pdf) loses exactly the points of the tests that cover it: the failed tests are
     exactly the ones listed for it below, and the points lost are theirs.
+ 5. Hostile submissions (tests/grading/hostile.py) score exactly what the honest trees beside them
+    score, test by test and render by render, within the time cap, and leave the grader's
+    machine untouched: no command of theirs ran outside the sandbox, no process of theirs
+    outlived the grading, the reports are the grader's.
 Exits 1 with one line per broken promise.
 """
 import fnmatch
 import re
 import json
+import os
 import pathlib
 import shutil
 import subprocess
 import sys
+import time
+
+import hostile
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 TASK_NAMED = re.compile(r"stage\d\.[a-z0-9_*]+\.[a-z0-9_*]+")  # what a failure must mention
@@ -55,9 +63,9 @@ def run(command, cwd=None):
     return subprocess.run(command, cwd=cwd).returncode
 
 
-def grade(tree, out, work):
+def grade(tree, out, work, *flags):
     """Grades `tree`; returns (results.json, outcomes.json) as dictionaries."""
-    if run([PYTHON, ROOT / "tools" / "grade.py", tree, "--out", out, "--work", work]) != 0:
+    if run([PYTHON, ROOT / "tools" / "grade.py", tree, "--out", out, "--work", work, *flags]) != 0:
         raise SystemExit(f"check_grading: grading {tree} failed to run")
     out = pathlib.Path(out)
     return json.loads((out / "results.json").read_text()), json.loads((out / "outcomes.json").read_text())
@@ -76,20 +84,27 @@ def check_starter(work, problems):
     shutil.rmtree(starter, ignore_errors=True)
     if run([PYTHON, ROOT / "tools" / "make_starter.py", starter]) != 0:
         problems.append("make_starter.py failed")
-        return
+        return starter, None
     # The README's commands, in the starter tree: configure and build with warnings as errors.
     if run(["cmake", "--preset", "release"], cwd=starter) != 0 or run(["cmake", "--build", "--preset", "release"], cwd=starter) != 0:
         problems.append("the starter tree does not build warning-free with cmake --preset release")
-        return
+        return starter, None
     results, outcomes = grade(starter, work / "starter-report", work / "starter-grade")
+    check_starter_outcomes(outcomes, problems)
+    return starter, outcomes
+
+
+def check_starter_outcomes(outcomes, problems):
+    results = {"score": sum(g["score"] for g in outcomes["groups"]) + sum(r["score"] for r in outcomes["renders"])}
     if results["score"] != 0:
         problems.append(f"the starter tree scores {results['score']}, not 0")
     for render in outcomes["renders"]:
-        if any(s in p for p in render["problems"] for s in ("exited with", "wrote no readable image", "was not built", "ran longer")):
+        if any(s in p for p in render["problems"] for s in ("exited with", "wrote no readable image", "was not built",
+                                                             "ran longer", "not checked")):
             problems.append(f"starter: render {render['name']}: the program wrote no image: {render['problems'][0]}")
     timeout = json.loads((ROOT / "grading" / "manifest.json").read_text())["test_timeout_seconds"]
     for test in outcomes["tests"]:
-        if any(s in test["output"] for s in ("Timeout", "SEGFAULT", "Subprocess aborted", "Child aborted")) or \
+        if any(s in test["output"] for s in ("Timeout", "without GoogleTest's report", "truncated")) or \
                 test["seconds"] >= timeout:
             problems.append(f"starter: {test['name']}: crashed or ran into its time limit")
         if test["group"] and not test["passed"] and not TASK_NAMED.search(test["output"]):
@@ -125,15 +140,98 @@ def check_full_and_bugs(work, problems):
         print(f"check_grading: {bug['task']}: {len(failed)} tests failed, {lost:g} points lost", flush=True)
 
 
+def same_outcomes(label, got, expected, stages, problems):
+    """Every test and render check of `stages` fares in `got` as in `expected`, and the totals agree."""
+    def table(outcomes):
+        tests = {t["name"]: t["passed"] for t in outcomes["tests"] if t["stage"] in stages and t["group"]}
+        renders = {r["name"]: r["score"] for r in outcomes["renders"] if r["stage"] in stages}
+        score = sum(g["score"] for g in outcomes["groups"] if g["stage"] in stages) + sum(renders.values())
+        return tests, renders, score
+    (tests, renders, score), (want_tests, want_renders, want_score) = table(got), table(expected)
+    for name in sorted(want_tests.keys() | tests.keys()):
+        if tests.get(name) != want_tests.get(name):
+            problems.append(f"{label}: {name} {'passed' if tests.get(name) else 'failed'}, but "
+                            f"{'passes' if want_tests.get(name) else 'fails'} in the honest tree")
+    for name in sorted(want_renders):
+        if renders.get(name) != want_renders[name]:
+            problems.append(f"{label}: render {name} scored {renders.get(name)}, the honest tree {want_renders[name]}")
+    if abs(score - want_score) > 0.005:
+        problems.append(f"{label}: scored {score:g}, the honest tree {want_score:g}")
+    print(f"check_grading: {label}: {score:g} points, the honest tree {want_score:g}", flush=True)
+
+
+def processes_running_from(folder):
+    """Processes whose program or working folder lies in `folder` (a submission's survivors)."""
+    found = []
+    for entry in pathlib.Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        for link in ("exe", "cwd"):
+            try:
+                if os.readlink(entry / link).startswith(str(folder)):
+                    found.append(f"{entry.name} ({os.readlink(entry / 'exe')})")
+                    break
+            except OSError:
+                pass
+    return found
+
+
+def check_hostile(work, starter, starter_outcomes, problems):
+    """The hostile submissions of hostile.py, graded for stage 1 in the work folders of the trees
+    they copy (only what they change is rebuilt)."""
+    cap, flags = 900, ["--stage", "1", "--test-timeout", "10", "--time-cap", "900"]
+    marker = work / "escaped"  # written or touched only by hostile code that got out
+    honest, attack = work / "honest-tree", work / "hostile-tree"
+    hostile.honest_tree(honest)
+    _, honest_outcomes = grade(honest, work / "honest-report", work / "bug-grade", *flags)
+    report = work / "hostile-report"
+    hostile.hostile_tree(attack, report / "results.json", marker)
+    results, outcomes = grade(attack, report, work / "bug-grade", *flags)
+    written = (report / "results.json").read_bytes()
+    same_outcomes("hostile submission A", outcomes, honest_outcomes, {1}, problems)
+    if outcomes["seconds"] > cap or outcomes["cap_reached"]:
+        problems.append(f"hostile submission A: graded in {outcomes['seconds']:.0f} s, past its cap of {cap} s")
+    if not any("sphere_intersection.cpp: refused (a symbolic link)" in note for note in outcomes["notes"]):
+        problems.append("hostile submission A: the link to the solution file is not reported as refused")
+    flagged = {f["why"] for f in outcomes["flags"]}
+    for why in ("ends the process (a test would end before its report)", "starts another process"):
+        if why not in flagged:
+            problems.append(f"hostile submission A: no flag for code that {why}")
+    time.sleep(5)  # the detached process would have written after 3 s
+    if (report / "results.json").read_bytes() != written:
+        problems.append("hostile submission A: results.json changed after the grader wrote it")
+    if marker.exists():
+        problems.append(f"hostile submission A: {marker} exists: hostile code ran outside the sandbox")
+    for survivor in processes_running_from(work):
+        problems.append(f"hostile submission A: process {survivor} outlived the grading")
+
+    # B: references replaced by the starter's own renders, which would then match them exactly.
+    if starter_outcomes is None:
+        return
+    spec = json.loads((ROOT / "grading" / "manifest.json").read_text())
+    check = spec["stages"]["1"]["renders"][0]
+    own = work / "starter-render.pfm"
+    subprocess.run([starter / "build/release/bin/stage1", "--scene", starter / check["scene"], "--out", own,
+                    "--seed", "1", *check["args"]], check=True, capture_output=True)
+    forged = {f"{check['reference']}-mean.pfm": own.read_bytes()}
+    hostile.replaced_references(work / "references-tree", starter, forged, marker)
+    _, outcomes = grade(work / "references-tree", work / "references-report", work / "starter-grade", "--stage", "1")
+    same_outcomes("hostile submission B", outcomes, starter_outcomes, {1}, problems)
+    if marker.exists():
+        problems.append(f"hostile submission B: {marker} exists: its CMakeLists.txt ran")
+
+
 def main():
     if len(sys.argv) != 2:
         print("usage: check_grading.py WORK", file=sys.stderr)
         return 2
     work = pathlib.Path(sys.argv[1]).resolve()
     work.mkdir(parents=True, exist_ok=True)
+    work.chmod(0o755)  # the sandbox's user enters the work folders below it
     problems = []
-    check_starter(work, problems)
+    starter, starter_outcomes = check_starter(work, problems)
     check_full_and_bugs(work, problems)
+    check_hostile(work, starter, starter_outcomes, problems)
     for problem in problems:
         print(f"check_grading: {problem}")
     print(f"check_grading: {len(problems)} problems")

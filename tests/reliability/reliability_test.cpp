@@ -7,14 +7,18 @@
 #include "common/image_io.h"
 #include "common/interrupt.h"
 #include "common/obj_loader.h"
+#include "common/sample_batch.h"
 #include "common/scene.h"
 
+#include "fuzz/batch_inputs.h"
 #include "reliability/child_process.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <csignal>
+#include <map>
 #include <thread>
 
 namespace rt {
@@ -44,19 +48,33 @@ void expect_loads_or_one_line(const std::filesystem::path& file, const std::stri
 TEST(FuzzInputs, EverySeedAndFindingLoadsOrIsRefusedInOneLine) {
   // The fuzzers' seed corpus and every input they ever found a bug with (tests/fuzz/), replayed
   // here in the normal build and under the sanitizer preset.
-  int files = 0;
+  ScratchDir batch_folder;
+  fuzzing::write_batch_images(batch_folder.path());
+  std::map<std::string, int> files;
   for (const char* folder : {"tests/fuzz/corpus", "tests/fuzz/regressions"}) {
     for (const auto& entry : std::filesystem::recursive_directory_iterator(source_path(folder))) {
-      if (!entry.is_regular_file()) continue;
+      if (!entry.is_regular_file() || entry.path().filename() == ".keep") continue;
       const std::string kind = entry.path().parent_path().filename().string();
       if (kind == "scene")
         expect_loads_or_one_line(entry.path(), "fuzz.json", [](const std::string& t, const std::string& s) { parse_scene(t, s); });
       else if (kind == "obj")
         expect_loads_or_one_line(entry.path(), "fuzz.obj", [](const std::string& t, const std::string& s) { parse_obj(t, s); });
-      ++files;
+      else if (kind == "batch")
+        expect_loads_or_one_line(entry.path(), "input.json", [&](const std::string& t, const std::string& s) {
+          fuzzing::read_batch_text(batch_folder.path(), t, s);
+        });
+      else if (kind == "merge") {
+        EXPECT_NO_THROW(fuzzing::merge_batch_texts(batch_folder.path(), testing::read_text(entry.path()))) << entry.path();
+      }
+      ++files[kind];
     }
   }
-  EXPECT_GE(files, 8);
+  for (const char* kind : {"scene", "obj", "batch", "merge"}) EXPECT_GE(files[kind], 3) << kind;
+  // The batch seeds are valid: they carry the fingerprints of the images the fuzzers write.
+  EXPECT_EQ(fuzzing::read_batch_text(batch_folder.path(), testing::read_text(source_path("tests/fuzz/corpus/batch/whole.json")),
+                                     "whole.json")
+                .sums.total_count(),
+            16u);
 }
 
 TEST(HostileFiles, DevicesAndFoldersAreRefusedNotReadForever) {
@@ -92,7 +110,7 @@ TEST(HostileFiles, BrokenScenesAndMeshesAreOneLineAndWriteNothing) {
       {"{" + camera + R"(, "materials": {"m": {}}, "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "m"}]})",
        "/shapes/0/radius"},
       {"{" + camera + R"(, "materials": {"m": {}}, "shapes": [], "colour": [1, 0, 0]})", "unknown key 'colour'"},
-      {"{" + camera + R"(, "materials": {"m": {"albedo": [0.5, 1e39, 0.5]}}, "shapes": []})", "not finite"},
+      {"{" + camera + R"(, "materials": {"m": {"albedo": [0.5, 1e39, 0.5]}}, "shapes": []})", "beyond float's range"},
       {"{" + camera + R"(, "materials": {}, "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "gold"}]})",
        "unknown material 'gold'"},
       {"{" + camera + R"(, "materials": {"m": {}}, "shapes": [{"type": "mesh", "file": "none.obj", "material": "m"}]})",
@@ -117,7 +135,7 @@ TEST(HostileFiles, BrokenScenesAndMeshesAreOneLineAndWriteNothing) {
 }
 
 TEST(ImageSize, RefusedBeforeAnythingIsAllocatedWithTheFigure) {
-  const std::uint64_t eight_gib = std::uint64_t(8) << 30;
+  const MemoryLimit eight_gib{std::uint64_t(8) << 30, MemoryLimit::Source::machine};
   EXPECT_NO_THROW(check_image_fits("a.png", 16384, 16384, eight_gib));  // 6 GiB
   try {
     check_image_fits("a.png", 40000, 50000, eight_gib);
@@ -126,7 +144,8 @@ TEST(ImageSize, RefusedBeforeAnythingIsAllocatedWithTheFigure) {
     EXPECT_STREQ(e.what(), "a.png: a 40000x50000 image needs 44.7 GiB of memory (the radiance and the encoded "
                            "file), and this machine has 8.0 GiB");
   }
-  EXPECT_THROW(check_image_fits("a.png", 1 << 20, 1 << 20, ~std::uint64_t(0)), InputError);  // 2^40 pixels
+  EXPECT_THROW(check_image_fits("a.png", 1 << 20, 1 << 20, MemoryLimit{~std::uint64_t(0), MemoryLimit::Source::machine}),
+               InputError);  // 2^40 pixels
 }
 
 TEST(ImageSize, EveryProgramRefusesAnImageLargerThanTheMachine) {
@@ -238,6 +257,27 @@ void expect_stops_and_writes(int signal_number) {
 
 TEST(Interrupt, CtrlCStopsWithinASecondAndWritesTheSamplesSoFar) { expect_stops_and_writes(SIGINT); }
 TEST(Interrupt, SigtermStopsWithinASecondAndWritesTheSamplesSoFar) { expect_stops_and_writes(SIGTERM); }
+// A closed terminal sends SIGHUP: the render is stopped and kept, not lost.
+TEST(Interrupt, SighupStopsLikeSigterm) { expect_stops_and_writes(SIGHUP); }
+
+// The render takes its samples in passes over the whole image, so a stopped one is a usable,
+// uniformly sampled image (each pixel at most one pass apart), not a few finished pixels: before,
+// every pixel took all 2^20 of its samples before the next began, and a stop after 0.7 s left one
+// pixel lit.
+TEST(Interrupt, AStoppedRenderHasNearlyTheSameSamplesInEveryPixel) {
+  ScratchDir dir;
+  LongRender run(dir, "partial.json");
+  ASSERT_TRUE(run.child.started());
+  std::this_thread::sleep_for(1500ms);  // a pass over the image takes some 0.1 s, 0.5 s under the sanitizers
+  run.child.signal(SIGTERM);
+  ASSERT_TRUE(run.child.wait_for(2000ms));
+  const SampleBatch batch = read_sample_batch(run.out);
+  ASSERT_TRUE(batch.interrupted);
+  const auto [least, most] = std::minmax_element(batch.sums.counts().begin(), batch.sums.counts().end());
+  const std::uint32_t pass = std::uint32_t(samples_per_pass(64 * 64, 1 << 20));
+  EXPECT_GE(*least, pass) << "every pixel has finished its first pass";
+  EXPECT_LE(*most - *least, pass) << "no pixel is more than one pass ahead of another";
+}
 
 TEST(Interrupt, SecondCtrlCQuitsAtOnceLeavingNoFileBehind) {
   ScratchDir dir;

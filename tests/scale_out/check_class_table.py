@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """ctest class_table: tools/class_table.py turns the grader's results.json files of a class into one
 CSV and one HTML table: per-stage sums, totals and percentages right, names escaped, and a student
-without readable results listed (not dropped) with exit code 1."""
+without readable or consistent results listed (not dropped) with exit code 1."""
 import csv
 import json
 import pathlib
@@ -76,6 +76,22 @@ def main():
         check("eve" in rows and "grades/eve/results.json: no results" in rows["eve"]["problem"],
               f"a submission without a grade folder is missing from the table: {sorted(rows)}")
         check(r.returncode == 1 and len(rows) == len(students) + 1, f"--submissions: exit {r.returncode}, {len(rows)} rows")
+
+        # Forged results (a total that is not its tests' sum, a test above its maximum, no tests at
+        # all) are named, not added to the table.
+        forged = pathlib.Path(tmp) / "forged"
+        for name, text in {"fay": json.dumps({"score": 175, "tests": []}),
+                           "gus": results([("stage 1: Sphere.*", 3, 3)]).replace('"score": 3', '"score": 175', 1),
+                           "hal": results([("stage 1: Sphere.*", 6, 5)])}.items():
+            (forged / name).mkdir(parents=True)
+            (forged / name / "results.json").write_text(text)
+        r = run(forged, "--csv", out_csv)
+        rows = {row["student"]: row for row in csv.DictReader(out_csv.read_text().splitlines())}
+        check(r.returncode == 1, f"forged results: exit code {r.returncode} (want 1)")
+        for name, said in (("fay", "no tests, yet a score of 175"), ("gus", "a score of 175, but its tests add up to 3"),
+                           ("hal", "stage 1: Sphere.* scores 6 of 5")):
+            check(f"inconsistent results: {said}" in rows[name]["problem"] and rows[name]["score"] == "",
+                  f"{name}'s forged results: {rows[name]}")
 
         # Only good students: exit 0; a single student's folder works too.
         for name in ("cy", "dee"):

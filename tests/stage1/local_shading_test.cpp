@@ -22,8 +22,12 @@ SceneDescription floor_scene(Vec3 light_position, bool with_blocker = false) {
 
 Color shade_floor_at(const RayCastingScene& scene, Vec3 point) {
   const Ray view{point + Vec3(0, 3, -3), glm::normalize(Vec3(0, -3, 3))};
-  Hit hit = *scene.closest_hit(Ray{point + Vec3(0, 1, 0), Vec3(0, -1, 0)}, Interval::positive());
-  return shade_local(scene, hit, -view.direction);
+  const std::optional<Hit> hit = scene.closest_hit(Ray{point + Vec3(0, 1, 0), Vec3(0, -1, 0)}, Interval::positive());
+  if (!hit) {
+    ADD_FAILURE() << "the ray straight down onto the floor hit nothing (task stage1.scene.closest_hit)";
+    return Color(-1.0f);
+  }
+  return shade_local(scene, *hit, -view.direction);
 }
 
 TEST(LocalShading, LambertUnderAPointLightRightAbove) {

@@ -1,80 +1,147 @@
-"""Builds a tree for grading and runs one stage's tests, with time limits.
+"""The tree the grader builds, the build, and one stage's tests, each step in the sandbox.
 
-The tree is copied to a work folder first, so grading never writes into a student's folder. The
-copy gets the instructor's tests/ (the visible tests as published, plus tests/hidden/) and assets/
-(the scenes and references the tests read), so editing a test or a reference does not change a
-grade.
+The tree (work/src) is the instructor's (its build files, common/, stages/, tests/ with the hidden
+ones, assets/) with only the submission's editable files put in (submission.py), so a student's
+CMakeLists.txt, tests or references never count. A file whose bytes are already there is left
+alone and every other one is written anew, so a build folder kept from an earlier grading
+recompiles exactly what changed (ninja goes by modification times).
+
+The build folder is written only by cmake, ninja and the compiler: test discovery is deferred to
+ctest (which the grader does not use), so building runs none of the code it compiles, and a build
+folder can be kept from one grading to the next. While a student's code is compiled, the hidden
+tests' sources read as empty files, so a compile error cannot print them into the visible report;
+they are compiled in a step of their own, whose log only the instructor sees.
+
+Tests run one by one, each in a sandbox of its own that sees the assets, its test program and the
+stage programs only. A test passes only when its process ends with 0 AND GoogleTest's XML report,
+which it writes after the last test of a normal run, says that the test ran and passed: a test
+that ends its process early (exit, _exit, a crash, a kill) has no report and fails.
 """
+import concurrent.futures
 import dataclasses
-import filecmp
+import json
+import os
 import pathlib
-import shutil
-import subprocess
-import time
+import re
 import xml.etree.ElementTree as ElementTree
 
-IGNORED_PARTS = {".git", "build", "out", "__pycache__"}
-INSTRUCTOR_FOLDERS = ("tests", "assets")
+from . import files
+
+INSTRUCTOR_PARTS = ("CMakeLists.txt", "CMakePresets.json", "cmake/", "common/", "stages/", "tests/", "assets/",
+                    "tools/merge/")
+NEVER_COPIED = ("tests/grading/",)  # the grader's proofs hold solution lines
+MAX_REPORT_BYTES = 4 << 20
 
 
-def files_of(folder):
-    """Relative path -> file, for every file under `folder` outside build and version-control folders."""
-    folder = pathlib.Path(folder)
-    return {p.relative_to(folder).as_posix(): p for p in folder.rglob("*")
-            if p.is_file() and not IGNORED_PARTS & set(p.relative_to(folder).parts)}
+def instructor_files(root, hidden):
+    """Relative path -> path of the instructor's files the graded tree is made of."""
+    root = pathlib.Path(root)
+    skipped = {".git", "build", "out", "__pycache__"}
+    found = {}
+    for path in root.rglob("*"):
+        relative = path.relative_to(root).as_posix()
+        if skipped & set(path.relative_to(root).parts) or not path.is_file() or path.is_symlink():
+            continue
+        if not relative.startswith(INSTRUCTOR_PARTS) or relative.startswith(NEVER_COPIED):
+            continue
+        if not hidden and relative.startswith("tests/hidden/"):
+            continue
+        found[relative] = path
+    return found
 
 
-def prepare_tree(tree, instructor_root, work):
-    """Makes work/src a copy of `tree` with the instructor's tests and assets; returns its path.
-
-    A file whose bytes are already there is left alone and every other one is written anew, so a
-    build folder kept from an earlier grading recompiles exactly what changed (ninja goes by
-    modification times, and a copied file's old time would hide a change)."""
-    source = pathlib.Path(work) / "src"
-    wanted = {name: path for name, path in files_of(tree).items() if not name.startswith(tuple(f + "/" for f in INSTRUCTOR_FOLDERS))}
-    for folder in INSTRUCTOR_FOLDERS:
-        wanted.update({f"{folder}/{name}": path for name, path in files_of(pathlib.Path(instructor_root) / folder).items()})
-    present = files_of(source) if source.exists() else {}
+def prepare_tree(taken, root, source, hidden):
+    """Makes `source` the instructor's files with the submission's taken files in their place."""
+    source = pathlib.Path(source)
+    source.mkdir(parents=True, exist_ok=True)
+    source.chmod(0o755)
+    wanted = {name: path.read_bytes() for name, path in instructor_files(root, hidden).items()}
+    wanted.update(taken.files)
+    present = {p.relative_to(source).as_posix(): p for p in source.rglob("*") if p.is_file() or p.is_symlink()}
     for name in present.keys() - wanted.keys():
         present[name].unlink()
-    for name, path in wanted.items():
+    for name, data in wanted.items():
         target = source / name
-        if name in present and filecmp.cmp(path, target, shallow=False):
+        if name in present and not target.is_symlink() and target.read_bytes() == data:
             continue
-        target.parent.mkdir(parents=True, exist_ok=True)
-        shutil.copyfile(path, target)
-        shutil.copymode(path, target)
+        files.write_beneath(source, name, data)
     return source
 
 
-def run(command, log, timeout, cwd=None):
-    """Runs a command with its output appended to `log`; returns (exit code, seconds). A command
-    that outlives `timeout` is killed and reported as exit code 124."""
-    start = time.monotonic()
-    with open(log, "a") as out:
-        out.write(f"$ {' '.join(map(str, command))}\n")
-        out.flush()
-        try:
-            code = subprocess.run(command, stdout=out, stderr=subprocess.STDOUT, timeout=timeout, cwd=cwd).returncode
-        except subprocess.TimeoutExpired:
-            out.write(f"killed after {timeout} s\n")
-            code = 124
-    return code, time.monotonic() - start
+def hidden_sources(source):
+    return sorted(p for p in (pathlib.Path(source) / "tests" / "hidden").glob("*") if p.suffix in {".cpp", ".h"})
 
 
-def configure(source, build, log):
-    """Release build without warnings as errors: a warning costs a student nothing here (CI checks
-    the instructor's tree with -Werror)."""
-    return run(["cmake", "-S", source, "-B", build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
-                "-DRT_BUILD_BENCHMARKS=OFF", "-DRT_WARNINGS_AS_ERRORS=OFF"], log, timeout=300)[0] == 0
+class Builder:
+    """The build of one tree in `work` (src, build, scratch) through a sandbox."""
 
+    def __init__(self, sandbox, work, jobs, deadline):
+        self.sandbox, self.jobs, self.deadline = sandbox, jobs, deadline
+        self.work = pathlib.Path(work)
+        self.source, self.build = self.work / "src", self.work / "build"
+        self.scratch = self.work / "scratch"
+        for folder in (self.build, self.scratch):
+            folder.mkdir(parents=True, exist_ok=True)
+            self.own(folder)
 
-def build_stage(build, stage, log, jobs):
-    """The stage's program, its tests and its hidden tests (if the tree has them)."""
-    targets = [f"stage{stage}", f"stage{stage}_tests"]
-    if (pathlib.Path(build) / "tests" / "hidden").exists():
-        targets.append(f"stage{stage}_hidden_tests")
-    return run(["cmake", "--build", build, "-j", str(jobs), "--target", *targets], log, timeout=1800)[0] == 0
+    def _step(self, command, log, limit, masked=()):
+        timeout = self.deadline.timeout(limit)
+        if timeout <= 0:
+            with open(log, "a") as out:
+                out.write(f"not run: the time cap of {self.deadline.cap:g} s was reached\n")
+            return False
+        # The build folder is the step's one writable folder (its HOME and TMPDIR too).
+        result = self.sandbox.run(command, log, timeout, read_only=[self.source], writable=[self.build],
+                                  masked=masked, cwd=self.build)
+        return result.code == 0
+
+    def own(self, path):
+        """Hands a folder a step writes to the sandbox's user."""
+        if self.sandbox.owner_of_scratch() is not None:
+            os.chown(path, self.sandbox.owner_of_scratch(), self.sandbox.owner_of_scratch())
+
+    def configure(self, log):
+        """Release, warnings not errors (a warning costs a student nothing here; CI checks the
+        instructor's tree with -Werror), test discovery deferred to ctest time."""
+        return self._step(["cmake", "-S", str(self.source), "-B", str(self.build), "-G", "Ninja",
+                           "-DCMAKE_BUILD_TYPE=Release", "-DRT_BUILD_BENCHMARKS=OFF", "-DRT_WARNINGS_AS_ERRORS=OFF",
+                           "-DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST"], log, 300)
+
+    def build_stage(self, stage, log):
+        """The stage's program and tests (every stage program: the tests of a stage run them)."""
+        targets = [f"stage{stage}", f"stage{stage}_tests"]
+        return self._step(["cmake", "--build", str(self.build), "-j", str(self.jobs), "--target", *targets], log, 1800,
+                          masked=hidden_sources(self.source))
+
+    def build_hidden(self, stage, log):
+        if not hidden_sources(self.source):
+            return True
+        return self._step(["cmake", "--build", str(self.build), "-j", str(self.jobs), "--target",
+                           f"stage{stage}_hidden_tests"], log, 1800)
+
+    def programs(self):
+        return [p for p in sorted((self.build / "bin").glob("stage[0-9]")) if p.is_file()]
+
+    def run_tests(self, tests, logs, timeout):
+        """Runs each test ({"name", "program"}) in its own sandbox; name -> TestResult."""
+        logs = pathlib.Path(logs)
+        files.remove_tree(logs)  # a kept work folder holds the last grading's
+        logs.mkdir(parents=True)
+        slots = [self.scratch / f"test{slot}" for slot in range(self.jobs)]
+        free = list(slots)
+        results = {}
+
+        def one(index, test):
+            slot = free.pop()
+            try:
+                return run_one_test(self, test, slot, logs / f"{index:04d}.log", timeout)
+            finally:
+                free.append(slot)
+
+        with concurrent.futures.ThreadPoolExecutor(max_workers=self.jobs) as pool:
+            for result in pool.map(lambda item: one(*item), enumerate(tests)):
+                results[result.name] = result
+        return results
 
 
 @dataclasses.dataclass
@@ -85,23 +152,81 @@ class TestResult:
     output: str
 
 
-def run_stage_tests(build, stage, junit, log, jobs, timeout):
-    """ctest for the label stageN, each test limited to `timeout` seconds; the results by name."""
-    run(["ctest", "--test-dir", build, "-L", f"^stage{stage}$", "-j", str(jobs), "--timeout", str(timeout),
-         "--output-junit", junit], log, timeout=3600)
-    return read_junit(junit)
+def run_one_test(builder, test, slot, log, timeout):
+    name, program = test["name"], builder.build / "bin" / test["program"]
+    if not program.is_file():
+        return TestResult(name, False, 0.0, f"{test['program']} was not built")
+    step = builder.deadline.timeout(timeout)
+    if step <= 0:
+        return TestResult(name, False, 0.0, f"not run: the time cap of {builder.deadline.cap:g} s was reached")
+    files.remove_tree(slot)
+    slot.mkdir()
+    builder.own(slot)
+    report = slot / "report.xml"
+    read_only = [builder.source / "assets", program, *builder.programs()]
+    result = builder.sandbox.run([str(program), f"--gtest_filter={name}", f"--gtest_output=xml:{report}"], log, step,
+                                 read_only=list(dict.fromkeys(read_only)), writable=[slot], cwd=slot)
+    verdict = judge(name, result, slot)
+    files.remove_tree(slot)
+    return TestResult(name, verdict is None, result.seconds, test_output(files.head_and_tail_of(log, 20000), verdict))
 
 
-def read_junit(path):
-    results = {}
-    if not pathlib.Path(path).exists():
-        return results
-    for case in ElementTree.parse(path).getroot().iter("testcase"):
-        output = "".join(node.text or "" for node in case.iter("system-out"))
-        failure = case.find("failure")
-        if failure is not None:
-            output = (failure.get("message") or "") + "\n" + output
-        passed = case.get("status") == "run" and failure is None and case.find("error") is None
-        name = case.get("name").split("  # GetParam()")[0]  # a parameterized test's name, without its value
-        results[name] = TestResult(name, passed, float(case.get("time") or 0), output.strip())
-    return results
+# GoogleTest's frame around one test's run, which says nothing a report needs.
+GTEST_FRAME = re.compile(r"^(\$ |Running main\(\) from|Note: Google Test filter|\[==========\]|\[----------\]|"
+                         r"\[ RUN      \]|\[       OK \]|\[  PASSED  \]|\[  FAILED  \]| 1 FAILED TEST|$)")
+
+
+def test_output(said, verdict):
+    """What a report shows of a test: its own output (GoogleTest's failures with their lines, a
+    placeholder's TODO line) without GoogleTest's frame, up to its summary, and then why it did
+    not pass unless its failures already say so."""
+    lines = said.split("\n[  FAILED  ] 1 test, listed below:")[0].splitlines()
+    output = "\n".join(line for line in lines if not GTEST_FRAME.match(line))
+    if verdict and not all(part.strip() in output for part in verdict.splitlines()):
+        output += ("\n" if output else "") + verdict
+    return output.strip()
+
+
+def judge(name, result, slot):
+    """Why the test did not pass, or None when it did: its exit code and its own report agree."""
+    if result.timed_out:
+        return "Timeout: the test ran longer than its limit and was killed"
+    try:
+        xml = files.read_beneath(slot, "report.xml", MAX_REPORT_BYTES)
+    except (FileNotFoundError, files.Refused, OSError):
+        return (f"the test process ended (exit code {result.code}) without GoogleTest's report: it did not finish "
+                "normally (a task that calls exit or _exit, a crash, or a kill)")
+    if b"<!DOCTYPE" in xml or b"<!ENTITY" in xml:  # GoogleTest writes none: entity expansion is an attack
+        return "GoogleTest's report is malformed (it declares entities): the test did not finish normally"
+    try:
+        root = ElementTree.fromstring(xml)
+    except ElementTree.ParseError:
+        return "GoogleTest's report is truncated or malformed: the test did not finish normally"
+    cases = [c for c in root.iter("testcase") if f"{c.get('classname')}.{c.get('name')}" == name]
+    if len(cases) != 1 or sum(1 for _ in root.iter("testcase")) != 1:
+        return "GoogleTest's report does not hold exactly this test"
+    case = cases[0]
+    failures = [f.get("message") or "" for f in case.iter("failure")] + [e.get("message") or "" for e in case.iter("error")]
+    if failures:
+        return "\n".join(failures)
+    if case.get("status") != "run" or case.get("result", "completed") != "completed":
+        return f"the test did not run to completion ({case.get('result') or case.get('status')})"
+    if result.code != 0:
+        return f"the test process exited with {result.code} after its report said it passed"
+    return None
+
+
+def list_tests(build):
+    """The tests of every stage label in an instructor's build: {stage: [{"name", "program"}]}, from
+    ctest's listing (which runs the test programs to discover their tests: the instructor's own)."""
+    import subprocess
+    listing = json.loads(subprocess.run(["ctest", "--test-dir", str(build), "--show-only=json-v1"], check=True,
+                                        capture_output=True, text=True).stdout)
+    stages = {}
+    for test in listing["tests"]:
+        labels = next((p["value"] for p in test.get("properties", []) if p["name"] == "LABELS"), [])
+        for label in labels:
+            if m := re.fullmatch(r"stage(\d+)", label):
+                name = test["name"].split("  # GetParam()")[0]
+                stages.setdefault(m.group(1), []).append({"name": name, "program": pathlib.Path(test["command"][0]).name})
+    return {stage: sorted(tests, key=lambda t: (t["program"], t["name"])) for stage, tests in sorted(stages.items())}

@@ -10,7 +10,11 @@ import numpy as np
 
 def read_pfm(path):
     """A colour PFM (header "PF"), as the stage programs write it; raises ValueError naming the file."""
-    data = pathlib.Path(path).read_bytes()
+    return decode_pfm(pathlib.Path(path).read_bytes(), path)
+
+
+def decode_pfm(data, path):
+    """The same from the file's bytes; `path` names it in messages."""
     try:
         header, size, scale, rest = data.split(b"\n", 3)
         width, height = map(int, size.split())

@@ -1,10 +1,12 @@
-"""The grading manifest (grading/manifest.json): what each stage's tests and renders are worth.
+"""The grading manifest (grading/manifest.json): what each stage's tests and renders are worth, and
+the list of the tests themselves (grading/tests.json, made from the instructor's build by
+`tools/grade.py --list-tests`): only those tests are run and scored, whatever a submission does.
 
 Per stage:
-  groups:   {"tests": glob over ctest names, "count": how many tests it holds in the full tree,
-             "points": what the whole group is worth, "tasks": the task ids it checks,
-             "hidden": true for instructor-only tests}. A group earns points * passed / count;
-             a test that did not run (its stage did not build) counts as failed.
+  groups:   {"tests": glob over test names, "points": what the whole group is worth, "tasks": the
+             task ids it checks, "hidden": true for instructor-only tests}. A group earns
+             points * passed / count, count being the listed tests it holds; a listed test that
+             did not run (its stage did not build, the time cap was reached) counts as failed.
   ungraded: globs of tests that pass without any task done (bad-input handling, file formats):
             they are reported, worth nothing.
   renders:  render checks (tools/grading/renders.py), each with its points.
@@ -36,25 +38,40 @@ def load(path):
     return manifest
 
 
+def load_tests(path, hidden=True):
+    """grading/tests.json: stage -> [{"name", "program"}], without the hidden tests unless `hidden`."""
+    listed = json.loads(pathlib.Path(path).read_text())["stages"]
+    return {int(stage): [t for t in tests if hidden or not t["program"].endswith("_hidden_tests")]
+            for stage, tests in listed.items()}
+
+
 def matches(name, pattern):
     return fnmatch.fnmatchcase(name, pattern)
 
 
-def score_stage(stage, spec, results, build_problem=None):
-    """Scores one stage's groups from its test results (name -> TestResult). Returns (groups,
-    tests that no group or ungraded glob claims)."""
-    ungraded = {name for name in results if any(matches(name, pattern) for pattern in spec.get("ungraded", []))}
+def score_stage(stage, spec, expected, results, build_problem=None):
+    """Scores one stage's groups. `expected` lists the stage's tests, `results` maps names to the
+    TestResults of those that ran. Returns (groups, listed tests that no group or ungraded glob
+    claims)."""
+    not_run = build_problem or "did not run"
+    outcomes = {t["name"]: results.get(t["name"]) or TestResultLike(t["name"], False, 0.0, not_run) for t in expected}
+    ungraded = {name for name in outcomes if any(matches(name, pattern) for pattern in spec.get("ungraded", []))}
     claimed, groups = set(ungraded), []
     for group in spec["groups"]:
-        mine = [r for name, r in sorted(results.items()) if name not in claimed and matches(name, group["tests"])]
+        mine = [r for name, r in sorted(outcomes.items()) if name not in claimed and matches(name, group["tests"])]
         claimed.update(r.name for r in mine)
         passed = sum(r.passed for r in mine)
         failures = [(r.name, r.output) for r in mine if not r.passed]
-        missing = group["count"] - len(mine)
-        if missing > 0:
-            failures.append((group["tests"], build_problem or f"{missing} of its {group['count']} tests did not run"))
-        count = max(group["count"], len(mine))
-        score = round(group["points"] * passed / count, 2) if count else 0.0
-        groups.append(GroupScore(stage, group["tests"], group["points"], score, passed, count, group.get("tasks", []),
+        score = round(group["points"] * passed / len(mine), 2) if mine else 0.0
+        groups.append(GroupScore(stage, group["tests"], group["points"], score, passed, len(mine), group.get("tasks", []),
                                  group.get("hidden", False), failures, [r.name for r in mine]))
-    return groups, [name for name in results if name not in claimed]
+    return groups, [name for name in outcomes if name not in claimed], outcomes
+
+
+@dataclasses.dataclass
+class TestResultLike:
+    """A listed test that never ran, scored as failed."""
+    name: str
+    passed: bool
+    seconds: float
+    output: str

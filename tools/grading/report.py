@@ -8,7 +8,7 @@ import pathlib
 
 import numpy as np
 
-from . import images
+from . import files, images
 
 MAX_OUTPUT = 4000  # characters of a failed test's output kept in the reports
 
@@ -34,11 +34,24 @@ def gradescope(grade):
         tests.append({"name": f"stage {r.stage}: render {r.name}", "score": r.score, "max_score": r.points,
                       "output": "\n".join(r.problems) or f"matches the reference (RMSE {r.rmse:.4g})",
                       "visibility": "visible"})
+    if grade.get("flags"):
+        tests.append({"name": "for the instructor: calls a task has no business making", "score": 0, "max_score": 0,
+                      "output": "\n".join(f"{f.file}:{f.line}: {f.why}: {f.text}" for f in grade["flags"]),
+                      "visibility": "hidden"})
+    output = "\n".join([grade["summary"], *notes(grade)])
     result = {"score": round(sum(t["score"] for t in tests), 2), "execution_time": round(grade["seconds"], 1),
-              "output": grade["summary"], "visibility": "visible", "stdout_visibility": "hidden", "tests": tests}
+              "output": output, "visibility": "visible", "stdout_visibility": "hidden", "tests": tests}
     if grade.get("rays_per_second"):
         result["leaderboard"] = [{"name": "BVH rays/s", "value": round(grade["rays_per_second"]), "order": "desc"}]
     return result
+
+
+def notes(grade):
+    """Lines about the submission as a whole: files refused, the time cap."""
+    lines = list(grade.get("notes", []))
+    if grade.get("cap_reached"):
+        lines.append(f"The time cap of {grade['time_cap']:g} s was reached: what had not run by then counts as failed.")
+    return lines
 
 
 def stage_scores(grade):
@@ -50,7 +63,10 @@ def stage_scores(grade):
 
 
 def markdown(grade):
-    lines = [f"# Grade: {grade['tree']}", "", grade["summary"], "", "| stage | score | of |", "|---|---:|---:|"]
+    lines = [f"# Grade: {grade['tree']}", "", grade["summary"], "",
+             f"Graded in {grade['seconds']:.0f} s of a {grade['time_cap']:g} s cap.", ""]
+    lines += [f"- {line}" for line in notes(grade)] + ([""] if notes(grade) else [])
+    lines += ["| stage | score | of |", "|---|---:|---:|"]
     for stage, (score, points) in sorted(stage_scores(grade).items()):
         lines.append(f"| {stage} | {score:.2f} | {points:g} |")
     for stage in sorted(stage_scores(grade)):
@@ -69,7 +85,21 @@ def markdown(grade):
         lines += ["", f"Leaderboard: BVH {grade['rays_per_second'] / 1e6:.2f} M rays/s (bunny, 1 thread)."]
     if grade["unclaimed"]:
         lines += ["", "Tests not in the manifest (worth nothing): " + ", ".join(f"`{n}`" for n in grade["unclaimed"])]
+    lines += instructor_section(grade)
     return "\n".join(lines) + "\n"
+
+
+def instructor_section(grade):
+    """What only the instructor reads: hidden builds that failed, and the flagged calls."""
+    lines = []
+    for stage, log in sorted(grade.get("hidden_build_problems", {}).items()):
+        lines += ["", f"## Stage {stage}: the hidden tests did not build", "", "```", clip(log), "```"]
+    if grade.get("flags"):
+        lines += ["", "## Flags: calls a task has no business making", "",
+                  "A test's own process can misbehave in ways no sandbox stops (writing its report and ending "
+                  "early, say); these lines of the student's are worth reading.", ""]
+        lines += [f"- `{f.file}:{f.line}`: {f.why}: `{f.text}`" for f in grade["flags"]]
+    return lines
 
 
 def png_data_uri(rgb8, scale):
@@ -98,6 +128,8 @@ def render_figure(r):
 
 def html_report(grade):
     parts = [f"<h1>Grade: {html.escape(str(grade['tree']))}</h1><p>{html.escape(grade['summary'])}</p>",
+             f"<p>Graded in {grade['seconds']:.0f} s of a {grade['time_cap']:g} s cap.</p>",
+             *(f"<p class='bad'>{html.escape(line)}</p>" for line in notes(grade)),
              "<table><tr><th>stage</th><th>score</th><th>of</th></tr>"]
     for stage, (score, points) in sorted(stage_scores(grade).items()):
         parts.append(f"<tr><td>{stage}</td><td>{score:.2f}</td><td>{points:g}</td></tr>")
@@ -124,6 +156,9 @@ def html_report(grade):
             parts.append(f"<h3 class='{css}'>Render: {html.escape(r.name)}: {r.score:g} / {r.points:g}, RMSE {r.rmse:.4g}</h3>")
             parts += [f"<p class='bad'>{html.escape(p)}</p>" for p in r.problems]
             parts.append(render_figure(r))
+    extra = instructor_section(grade)
+    if extra:
+        parts.append(f"<pre>{html.escape(chr(10).join(extra))}</pre>")
     style = ("body{font-family:sans-serif;max-width:60em;margin:auto} table{border-collapse:collapse} "
              "td,th{border:1px solid #ccc;padding:2px 8px} .bad{color:#b00} .ok{color:#070} "
              ".row{display:flex;gap:1em} figure{margin:0} figcaption{font-size:80%} img{image-rendering:pixelated}")
@@ -138,15 +173,18 @@ def outcomes(grade):
             "renders": [{"stage": r.stage, "name": r.name, "points": r.points, "score": r.score,
                          "rmse": r.rmse if r.rmse == r.rmse else None,
                          "problems": r.problems} for r in grade["renders"]],
-            "rays_per_second": grade.get("rays_per_second")}
+            "rays_per_second": grade.get("rays_per_second"), "seconds": grade["seconds"],
+            "time_cap": grade["time_cap"], "cap_reached": grade.get("cap_reached", False), "notes": grade.get("notes", []),
+            "flags": [{"file": f.file, "line": f.line, "why": f.why, "text": f.text} for f in grade.get("flags", [])]}
 
 
 def write_reports(grade, out):
+    """The four reports, each written atomically: a reader (Gradescope, class_table.py) sees the old
+    one or the whole new one. They are written here, by the grader, in a folder no sandboxed step
+    can see."""
     out = pathlib.Path(out)
     out.mkdir(parents=True, exist_ok=True)
     for name, text in [("results.json", json.dumps(gradescope(grade), indent=1)), ("report.md", markdown(grade)),
                        ("outcomes.json", json.dumps(outcomes(grade), indent=1)),
                        ("report.html", html_report(grade))]:
-        temporary = out / (name + ".tmp")
-        temporary.write_text(text)
-        temporary.replace(out / name)  # never a half-written report
+        files.write_atomically(out / name, text)

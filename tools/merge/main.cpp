@@ -62,11 +62,16 @@ std::string spp_reached(const MergeResult& r) {
 void run(const std::string& out, const std::optional<int>& spp, bool partial, const std::optional<std::string>& reference,
          const std::vector<std::string>& inputs) {
   if (!is_batch_path(out)) image_format_for(out);
-  check_output_writable(out);
+  for (const std::string& file : output_files(out)) check_output_writable(file);
   const std::vector<SampleBatch> batches = read_batches(inputs);
+  std::vector<std::string> read;  // every file merge reads: writing one of them would destroy it
+  for (const SampleBatch& b : batches)
+    read.insert(read.end(), {b.file.string(), batch_sum_path(b.file).string(), batch_count_path(b.file).string()});
+  if (reference) read.push_back(*reference);
+  require_outputs_spare_inputs(out, read);
   // The merged image is held whole: refuse, with the figures, one this machine could not hold.
   if (!batches.empty())
-    check_image_fits(out, batches[0].identity.width, batches[0].identity.height, physical_memory_bytes());
+    check_image_fits(out, batches[0].identity.width, batches[0].identity.height, memory_limit());
   MergeOptions options;
   options.spp = spp;
   options.partial = partial;
@@ -80,9 +85,9 @@ void run(const std::string& out, const std::optional<int>& spp, bool partial, co
       throw InputError(*reference + ": the reference is " + std::to_string(ref.width()) + "x" +
                        std::to_string(ref.height()) + ", the render " + std::to_string(image.width()) + "x" +
                        std::to_string(image.height()));
-    char text[96];
-    std::snprintf(text, sizeof text, "; RMSE %.6g against %s", rmse(image, ref), reference->c_str());
-    error = text;
+    char figure[32];
+    std::snprintf(figure, sizeof figure, "%.6g", rmse(image, ref));
+    error = std::string("; RMSE ") + figure + " against " + printable(*reference);
   }
   if (is_batch_path(out)) {
     result.merged.file = out;
@@ -112,7 +117,7 @@ int main(int argc, char** argv) {
                  "Output: .png or .pfm (the image) or .json (the merged batch, to merge again later)")
       ->required();
   app.add_option("--spp", spp, "Samples per pixel of the finished render (default: the most any batch reaches)")
-      ->check(CLI::Range(1, kMaxSpp));
+      ->transform(decimal(1, kMaxSpp));
   app.add_flag("--partial", partial,
                "Progressive refinement: merge the batches there are, each pixel the mean of the samples it has");
   app.add_option("--reference", reference, "A reference image (PFM) to report the merged render's RMSE against");

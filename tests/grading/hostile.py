@@ -1,0 +1,114 @@
+"""The hostile submissions the grader's proofs grade (check_grading.py), each behaviour in a task of
+stage 1 of its own, and the honest trees they must score exactly like.
+
+Submission A is this tree with five of stage 1's tasks turned hostile, beside the tree with those
+tasks left as placeholders (what an honest student who did not do them hands in):
+
+| task                      | what the hostile code does                                           |
+|---------------------------|----------------------------------------------------------------------|
+| stage1.plane.intersect    | _exit(0): under ctest every test that reaches it "passed"            |
+| stage1.implicit.intersect | loops for ever                                                       |
+| stage1.shading.local      | allocates without bound                                              |
+| stage1.camera.ray         | leaves a detached process that forges results.json seconds later     |
+| stage1.sphere.*           | sphere_intersection.cpp is a link to the grader's own solution file  |
+
+plus a CMakeLists.txt that runs a command at configure time and a tests/CMakeLists.txt that drops
+the failing tests and adds forged passing ones. The tasks are chosen so that every test reaching
+their code fails with the placeholder too, so the two trees must agree test by test: what the
+hostile code steals is then exactly what the comparison would show. Submission B is the starter tree with the render
+checks' references replaced by its own renders (and the same build files), beside the starter.
+"""
+import pathlib
+import shutil
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+import task_regions  # noqa: E402
+
+STAGE1 = "stages/01-ray-casting"
+HOSTILE_TASKS = ["stage1.plane.intersect", "stage1.implicit.intersect", "stage1.shading.local", "stage1.camera.ray",
+                 "stage1.sphere.textbook", "stage1.sphere.stable"]
+
+
+def replace_solution(path, task, code):
+    """Puts `code` (lines) and then the placeholder's code in place of `task`'s solution."""
+    lines = path.read_text().splitlines()
+    region = next(r for r in task_regions.parse(path, []) if r.task_id == task)
+    body = [region.indent + line for line in code] + region.placeholder_code(lines)
+    lines[region.begin + 1:region.placeholder] = body
+    path.write_text("\n".join(lines) + "\n")
+
+
+def copy_tree(source, destination):
+    shutil.rmtree(destination, ignore_errors=True)
+    shutil.copytree(source, destination, symlinks=True,
+                    ignore=shutil.ignore_patterns(".git", "build", "__pycache__"))
+
+
+def honest_tree(destination):
+    """This tree with the hostile tasks as placeholders."""
+    copy_tree(ROOT, destination)
+    for task in HOSTILE_TASKS:
+        file = {"plane": "plane_intersection.cpp", "implicit": "implicit_surface.cpp", "shading": "local_shading.cpp",
+                "camera": "camera_rays.cpp", "sphere": "sphere_intersection.cpp"}[task.split(".")[1]]
+        replace_solution(destination / STAGE1 / file, task, [])
+
+
+def hostile_build_files(tree, marker):
+    """A CMakeLists.txt that runs a command while cmake configures (it must never run), and a
+    tests/CMakeLists.txt that drops stage 1's tests and forges passing ones in their place."""
+    with open(tree / "CMakeLists.txt", "a") as out:
+        out.write(f'\nexecute_process(COMMAND touch "{marker}")\n')
+    tests = tree / "tests" / "CMakeLists.txt"
+    forged = "".join(f"add_test(NAME {name} COMMAND true)\nset_tests_properties({name} PROPERTIES LABELS stage1)\n"
+                     for name in ("Plane.BehindTheOriginIsNotHit", "Torus.RayThroughTheHoleMisses",
+                                  "BlinnPhong.Reciprocity", "CameraRays.ImageCentreLooksForward"))
+    tests.write_text(tests.read_text().replace("rt_add_tests(stage1_tests stage1", "rt_add_tests(stage1_tests dropped")
+                     + forged)
+
+
+def include(path, headers):
+    path.write_text("".join(f"#include <{h}>\n" for h in headers) + path.read_text())
+
+
+def hostile_tree(destination, forged_results, marker):
+    """Submission A. `forged_results` is the results.json the detached process tries to overwrite;
+    `marker` a file that any of the hostile code writes or touches if it ever escapes."""
+    copy_tree(ROOT, destination)
+    stage1 = destination / STAGE1
+    replace_solution(stage1 / "plane_intersection.cpp", "stage1.plane.intersect", ["::_exit(0);"])
+    include(stage1 / "plane_intersection.cpp", ["unistd.h"])
+    replace_solution(stage1 / "implicit_surface.cpp", "stage1.implicit.intersect",
+                     ["for (volatile bool forever = true; forever;) {", "}"])
+    replace_solution(stage1 / "local_shading.cpp", "stage1.shading.local",
+                     ["std::vector<std::vector<char>> hoard;",
+                      "while (true) hoard.emplace_back(std::size_t(1) << 26, char(1));  // touched, not only reserved"])
+    include(stage1 / "local_shading.cpp", ["vector"])
+    replace_solution(stage1 / "camera_rays.cpp", "stage1.camera.ray", [
+        "static std::atomic<bool> started{false};",
+        "if (!started.exchange(true) && ::fork() == 0) {",
+        "  ::setsid();",
+        "  ::sleep(3);  // the grader has written its results by now",
+        f'  if (std::FILE* out = std::fopen("{forged_results}", "w")) {{',
+        '    std::fputs("{\\"score\\": 175, \\"tests\\": []}", out);',
+        "    std::fclose(out);",
+        "  }",
+        f'  if (std::FILE* out = std::fopen("{marker}", "w")) std::fclose(out);',
+        "  ::_exit(0);",
+        "}"])
+    include(stage1 / "camera_rays.cpp", ["atomic", "cstdio", "unistd.h"])
+    sphere = stage1 / "sphere_intersection.cpp"
+    sphere.unlink()
+    sphere.symlink_to(ROOT / STAGE1 / "sphere_intersection.cpp")
+    hostile_build_files(destination, marker)
+
+
+def replaced_references(destination, starter, references, marker):
+    """Submission B: the starter tree with `references` ({path in the tree: bytes}, the starter's
+    own renders) in place of the render checks' references, and hostile build files."""
+    copy_tree(starter, destination)
+    for relative, data in references.items():
+        (destination / relative).parent.mkdir(parents=True, exist_ok=True)
+        (destination / relative).write_bytes(data)
+    hostile_build_files(destination, marker)
