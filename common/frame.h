@@ -24,4 +24,7 @@ struct Frame {
   Vec3 to_world(Vec3 v) const { return v.x * s + v.y * t + v.z * n; }
 };
 
+// The mirror direction of w about the local normal +z, in the local frame: r = 2 (w.n) n - w.
+inline Vec3 mirror_local(Vec3 w) { return Vec3(-w.x, -w.y, w.z); }
+
 }  // namespace rt

@@ -14,7 +14,7 @@ int resolve_thread_count(int threads) {
 }
 
 void parallel_for_tiles(int width, int height, int threads,
-                        const std::function<void(const Tile&)>& body) {
+                        const std::function<void(const PixelRect&)>& body) {
   const int tiles_x = (width + kTileSize - 1) / kTileSize;
   const int tiles_y = (height + kTileSize - 1) / kTileSize;
   const int tile_count = tiles_x * tiles_y;
@@ -26,7 +26,7 @@ void parallel_for_tiles(int width, int height, int threads,
   auto worker = [&] {
     for (int i = next++; i < tile_count && !failed; i = next++) {
       const int tx = i % tiles_x, ty = i / tiles_x;
-      const Tile tile{tx * kTileSize, ty * kTileSize, std::min(width, (tx + 1) * kTileSize),
+      const PixelRect tile{tx * kTileSize, ty * kTileSize, std::min(width, (tx + 1) * kTileSize),
                       std::min(height, (ty + 1) * kTileSize)};
       try {
         body(tile);

@@ -4,21 +4,19 @@
 // (seed, pixel, sample), see common/random.h.
 #pragma once
 
+#include "common/image.h"
+
 #include <functional>
 
 namespace rt {
 
-struct Tile {
-  int x0, y0, x1, y1;  // pixels [x0, x1) x [y0, y1)
-};
-
 inline constexpr int kTileSize = 16;
 
-// Calls body(tile) once for every tile of a width x height image on `threads` threads
+// Calls body(tile) once for every tile (a PixelRect) of a width x height image on `threads` threads
 // (0 = all cores). The first exception thrown by a body stops the remaining tiles and is rethrown
 // here.
 void parallel_for_tiles(int width, int height, int threads,
-                        const std::function<void(const Tile&)>& body);
+                        const std::function<void(const PixelRect&)>& body);
 
 // Number of threads `threads` stands for (0 = all cores, at least 1).
 int resolve_thread_count(int threads);

@@ -183,6 +183,11 @@ CameraSpec parse_camera(const Node& n) {
   return c;
 }
 
+Checker parse_checker(const Node& c) {
+  c.expect_object({"albedo", "size"});
+  return Checker{c["albedo"].as_color(1.0f, "albedo (more than 1 creates energy)"), c["size"].as_size("checker size")};
+}
+
 Material parse_material(const Node& n, const std::string& name) {
   n.expect_object();
   Material m;
@@ -193,12 +198,7 @@ Material parse_material(const Node& n, const std::string& name) {
     if (n.has("albedo")) m.albedo = n["albedo"].as_color(1.0f, "albedo (more than 1 creates energy)");
     if (n.has("specular")) m.specular = n["specular"].as_color(1.0f, "specular reflectance");
     if (n.has("shininess")) m.shininess = n["shininess"].as_float(0.0f, 1e6f, "shininess");
-    if (n.has("checker")) {
-      const Node c = n["checker"];
-      c.expect_object({"albedo", "size"});
-      m.checker = Checker{c["albedo"].as_color(1.0f, "albedo (more than 1 creates energy)"),
-                          c["size"].as_size("checker size")};
-    }
+    if (n.has("checker")) m.checker = parse_checker(n["checker"]);
   } else if (type == "mirror") {
     n.expect_object({"type", "reflectance", "emission"});
     m.type = MaterialType::mirror;
@@ -208,15 +208,17 @@ Material parse_material(const Node& n, const std::string& name) {
     m.type = MaterialType::dielectric;
     if (n.has("ior")) m.ior = n["ior"].as_float(1.0f, 10.0f, "index of refraction");
   } else if (type == "phong") {
-    n.expect_object({"type", "albedo", "specular", "shininess", "emission"});
+    n.expect_object({"type", "albedo", "specular", "shininess", "emission", "checker"});
     m.type = MaterialType::phong;
     m.specular = Color(0.2f);
     if (n.has("albedo")) m.albedo = n["albedo"].as_color(1.0f, "albedo (more than 1 creates energy)");
     if (n.has("specular")) m.specular = n["specular"].as_color(1.0f, "specular reflectance");
     if (n.has("shininess")) m.shininess = n["shininess"].as_float(0.0f, 1e6f, "shininess");
+    if (n.has("checker")) m.checker = parse_checker(n["checker"]);
     // Lambert reflects at most rho_d and the normalized lobe at most rho_s, so their sum must not
-    // exceed 1 (Lafortune & Willems 1994).
-    if (max_component(m.albedo + m.specular) > 1.0f)
+    // exceed 1 (Lafortune & Willems 1994), with either albedo of a checker.
+    const Color largest_albedo = m.checker ? glm::max(m.albedo, m.checker->albedo) : m.albedo;
+    if (max_component(largest_albedo + m.specular) > 1.0f)
       n.fail("albedo + specular exceeds 1 in some channel: the surface would reflect more than it receives");
   } else if (type == "microfacet") {
     n.expect_object({"type", "specular", "roughness", "emission"});

@@ -12,24 +12,7 @@ import sys
 
 import numpy as np
 
-
-def read_pfm(path):
-    with open(path, "rb") as f:
-        if f.readline().strip() != b"PF":
-            sys.exit(f"{path}: not a colour PFM file")
-        width, height = (int(v) for v in f.readline().split())
-        scale = float(f.readline())
-        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
-    if data.size != width * height * 3:
-        sys.exit(f"{path}: expected {width}x{height} pixels, found {data.size // 3}")
-    return data.reshape(height, width, 3).astype(np.float64)
-
-
-def write_pfm(path, image):
-    height, width, _ = image.shape
-    with open(path, "wb") as f:
-        f.write(f"PF\n{width} {height}\n-1\n".encode())
-        f.write(image.astype("<f4").tobytes())
+from pfm import read_pfm, write_pfm
 
 
 def main(out, inputs):
@@ -40,7 +23,7 @@ def main(out, inputs):
         rmse = float(np.sqrt(np.mean((images[0] - images[1]) ** 2)))
         print(f"RMSE between the two: {rmse:.6f}; each one's RMSE ~ {rmse / np.sqrt(2):.6f}; "
               f"the mean's ~ {rmse / 2:.6f}")
-    write_pfm(out, sum(images) / len(images))  # rows stay in file order (bottom first)
+    write_pfm(out, sum(images) / len(images))
     print(f"wrote {out}")
 
 

@@ -218,8 +218,8 @@ def srgb(linear):
 def cornell_pictures(root, render):
     """The README's Cornell box render beside the converged reference, for docs/stage5.md."""
     sys.path.insert(0, str(pathlib.Path(__file__).parent))
-    from average_pfm import read_pfm  # noqa: E402  (a sibling tool)
-    images = [read_pfm(render)[::-1], read_pfm(root / "assets" / "references" / "cornell-box-256.pfm")[::-1]]
+    from pfm import read_pfm  # noqa: E402  (a sibling tool)
+    images = [read_pfm(render), read_pfm(root / "assets" / "references" / "cornell-box-256.pfm")]
     titles = ["256 spp, MIS, Sobol (the README's first command)", "reference, 32,768 spp"]
     height, width = images[0].shape[:2]
     fig = plt.figure(figsize=(2 * width / 100, (height + 24) / 100), dpi=100)

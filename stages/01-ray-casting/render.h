@@ -77,7 +77,7 @@ SampleSums render_samples(const PinholeCamera& camera, const RenderSettings& set
   const int per_pass = samples_per_pass(window.area(), settings.spp);
   for (int begin = 0; begin < settings.spp && !interrupt_requested(); begin += per_pass) {
     const int end = std::min(settings.spp, begin + per_pass);
-    parallel_for_tiles(window.width(), window.height(), threads, [&](const Tile& tile) {
+    parallel_for_tiles(window.width(), window.height(), threads, [&](const PixelRect& tile) {
       std::uint64_t tile_samples = 0;
       for (int ty = tile.y0; ty < tile.y1; ++ty)
         for (int tx = tile.x0; tx < tile.x1; ++tx) {

@@ -61,11 +61,8 @@ float fresnel_schlick(float cos_i, float eta_i, float eta_t) {
   const float sin2_t = sin2_transmitted(cos_i, eta_i, eta_t);
   if (sin2_t >= 1.0f) return 1.0f;
   const float r0 = (eta_t - eta_i) / (eta_t + eta_i);
-  const float f0 = r0 * r0;
   // The curve is Schlick's fit in the angle on the thinner side; leaving glass that is theta_t.
-  const float cos = eta_i > eta_t ? std::sqrt(1.0f - sin2_t) : cos_i;
-  const float m = 1.0f - cos;
-  return f0 + (1.0f - f0) * (m * m) * (m * m) * m;
+  return schlick(r0 * r0, eta_i > eta_t ? std::sqrt(1.0f - sin2_t) : cos_i);
   // PLACEHOLDER
   // report_unfinished_task("stage2.optics.schlick");
   // (void)cos_i, (void)eta_i, (void)eta_t;

@@ -8,7 +8,7 @@ namespace rt {
 
 ShadingPoint make_shading_point(const LightingScene& scene, const Hit& hit, Vec3 towards_viewer) {
   const Frame frame = Frame::from_normal(hit.shading_normal);
-  return ShadingPoint{hit, make_brdf(scene.material(hit), hit), frame, frame.to_local(towards_viewer)};
+  return ShadingPoint{hit, make_bsdf(scene.material(hit), hit), frame, frame.to_local(towards_viewer)};
 }
 
 namespace {
@@ -30,7 +30,7 @@ Color direct_from_point_lights(const LightingScene& scene, const ShadingPoint& a
     const float distance = glm::length(to_light);
     if (!(distance > 0.0f)) continue;
     const Vec3 wi = at.frame.to_local(to_light / distance);
-    const Color f = at.brdf.eval(wi, at.wo);
+    const Color f = at.bsdf.eval(at.wo, wi);
     if (f == Color(0.0f)) continue;
     const ShadowRay shadow = spawn_shadow_ray(at.hit, light.position, offset);
     if (scene.occluded(shadow.ray, shadow.range)) continue;
@@ -50,7 +50,7 @@ Color direct_by_hemisphere(const LightingScene& scene, const ShadingPoint& at, b
   const Vec2 u = rng.uniform2();
   const Vec3 wi = cosine ? sample_cosine_hemisphere(u) : sample_uniform_hemisphere(u);
   const float pdf = cosine ? cosine_hemisphere_pdf(wi) : uniform_hemisphere_pdf(wi);
-  const Color f = at.brdf.eval(wi, at.wo);
+  const Color f = at.bsdf.eval(at.wo, wi);
   if (!(pdf > 0.0f) || f == Color(0.0f)) return Color(0.0f);
   return f * emitted_along(scene, at, at.frame.to_world(wi), offset) * (wi.z / pdf);
   // PLACEHOLDER
@@ -63,7 +63,7 @@ Color direct_by_hemisphere(const LightingScene& scene, const ShadingPoint& at, b
 Color direct_by_brdf_sampling(const LightingScene& scene, const ShadingPoint& at, Sampler& rng, const OffsetPolicy& offset) {
   // BEGIN TASK stage4.direct.brdf_sampling
   const Vec2 u = rng.uniform2();
-  const std::optional<BrdfSample> s = at.brdf.sample(at.wo, u, rng.uniform());
+  const std::optional<BsdfSample> s = at.bsdf.sample(at.wo, u, rng.uniform());
   if (!s) return Color(0.0f);
   return s->weight * emitted_along(scene, at, at.frame.to_world(s->wi), offset);
   // PLACEHOLDER
@@ -87,7 +87,7 @@ DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingP
   result.wi = at.frame.to_local(s.wi);
   result.pdf = choice.pmf * s.pdf;
   const Color le = emitter.radiance_towards(s.point, at.hit.point);
-  const Color f = at.brdf.eval(result.wi, at.wo);
+  const Color f = at.bsdf.eval(at.wo, result.wi);
   if (le == Color(0.0f) || f == Color(0.0f)) return result;
   const ShadowRay shadow = spawn_shadow_ray(at.hit, s.point, offset);
   if (scene.occluded(shadow.ray, shadow.range)) return result;
@@ -106,10 +106,10 @@ Color direct_radiance(const LightingScene& scene, const Ray& ray, const DirectOp
   const Color emitted = scene.emitted(*hit);
   const ShadingPoint at = make_shading_point(scene, *hit, -ray.direction);
 
-  if (at.brdf.is_delta()) {
+  if (at.bsdf.is_delta()) {
     if (depth >= options.max_depth) return emitted;
     const Vec2 u = rng.uniform2();
-    const std::optional<BrdfSample> s = at.brdf.sample(at.wo, u, rng.uniform());
+    const std::optional<BsdfSample> s = at.bsdf.sample(at.wo, u, rng.uniform());
     if (!s) return emitted;
     const Ray next = spawn_ray(*hit, at.frame.to_world(s->wi), options.offset);
     return emitted + s->weight * direct_radiance(scene, next, options, rng, depth + 1);

@@ -1,6 +1,6 @@
 // Stage 4: Monte Carlo direct lighting. The light reflected at x towards wo that arrives straight
 // from the emitters is the reflection equation with L_i = the emitted radiance Le seen along wi:
-//     L_r(x, wo) = integral_H f_r(wi -> wo) Le(x, wi) cos(theta_i) dwi,
+//     L_r(x, wo) = integral_H f_r(wo, wi) Le(x, wi) cos(theta_i) dwi,
 // estimated with one sample per camera sample by F = f_r Le cos(theta_i) / p(wi) (the Monte Carlo
 // estimator F_N = 1/N sum f(X_k) / p(X_k), averaged over the pixel's samples). Four choices of p,
 // all unbiased, so all converge to the same image; they differ only in variance:
@@ -17,7 +17,7 @@
 #pragma once
 
 #include "02-whitted/ray_offset.h"
-#include "04-radiometry/brdf.h"
+#include "04-radiometry/bsdf.h"
 #include "04-radiometry/lighting_scene.h"
 #include "common/frame.h"
 #include "common/random.h"
@@ -35,7 +35,7 @@ struct DirectOptions {
 // A point where light is reflected: the hit, its BRDF, its shading frame and wo in that frame.
 struct ShadingPoint {
   Hit hit;
-  Brdf brdf;
+  Bsdf bsdf;
   Frame frame;
   Vec3 wo;  // local, towards the viewer
 };

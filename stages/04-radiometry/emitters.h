@@ -9,7 +9,7 @@
 // sample on the visible side), which wastes nothing where area sampling wastes the far half.
 #pragma once
 
-#include "04-radiometry/brdf_sample.h"
+#include "04-radiometry/bsdf_sample.h"
 
 #include <optional>
 #include <variant>

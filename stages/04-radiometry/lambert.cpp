@@ -5,7 +5,7 @@
 
 namespace rt {
 
-Color LambertBrdf::eval(Vec3 wi, Vec3 wo) const {
+Color LambertBrdf::eval(Vec3 wo, Vec3 wi) const {
   // BEGIN TASK stage4.brdf.lambert
   if (wi.z <= 0.0f || wo.z <= 0.0f) return Color(0.0f);
   return albedo * kInvPi;
@@ -16,13 +16,13 @@ Color LambertBrdf::eval(Vec3 wi, Vec3 wo) const {
   // END TASK
 }
 
-std::optional<BrdfSample> LambertBrdf::sample(Vec3 wo, Vec2 u, float) const {
+std::optional<BsdfSample> LambertBrdf::sample(Vec3 wo, Vec2 u, float) const {
   if (wo.z <= 0.0f) return std::nullopt;
   const Vec3 wi = sample_cosine_hemisphere(u);
   if (wi.z <= 0.0f) return std::nullopt;
-  return BrdfSample{wi, albedo, cosine_hemisphere_pdf(wi), false};
+  return BsdfSample{wi, albedo, cosine_hemisphere_pdf(wi), false};
 }
 
-float LambertBrdf::pdf(Vec3 wi, Vec3 wo) const { return wo.z > 0.0f ? cosine_hemisphere_pdf(wi) : 0.0f; }
+float LambertBrdf::pdf(Vec3 wo, Vec3 wi) const { return wo.z > 0.0f ? cosine_hemisphere_pdf(wi) : 0.0f; }
 
 }  // namespace rt

@@ -1,24 +1,17 @@
 #include "04-radiometry/microfacet.h"
 
-#include "04-radiometry/warp.h"
+#include "02-whitted/optics.h"
 #include "common/task.h"
 
 namespace rt {
 
-Color fresnel_schlick_f0(Color f0, float cos_theta) {
-  const float m = std::clamp(1.0f - cos_theta, 0.0f, 1.0f);
-  const float m2 = m * m;
-  return f0 + (Color(1.0f) - f0) * (m2 * m2 * m);
-}
-
-Color MicrofacetBrdf::eval(Vec3 wi, Vec3 wo) const {
+Color MicrofacetBrdf::eval(Vec3 wo, Vec3 wi) const {
   // BEGIN TASK stage4.brdf.microfacet
   if (wi.z <= 0.0f || wo.z <= 0.0f) return Color(0.0f);
-  const Vec3 half = wi + wo;
+  const Vec3 half = wo + wi;
   if (glm::dot(half, half) == 0.0f) return Color(0.0f);
   const Vec3 h = glm::normalize(half);
-  const float g2 = 1.0f / (1.0f + ggx_lambda(wi, alpha) + ggx_lambda(wo, alpha));
-  return fresnel_schlick_f0(f0, glm::dot(wi, h)) * (ggx_ndf(h, alpha) * g2 / (4.0f * wi.z * wo.z));
+  return schlick(f0, glm::dot(wi, h)) * (ggx.d(h) * ggx.g2(wo, wi) / (4.0f * wi.z * wo.z));
   // PLACEHOLDER
   // report_unfinished_task("stage4.brdf.microfacet");
   // (void)wi, (void)wo;
@@ -26,24 +19,24 @@ Color MicrofacetBrdf::eval(Vec3 wi, Vec3 wo) const {
   // END TASK
 }
 
-std::optional<BrdfSample> MicrofacetBrdf::sample(Vec3 wo, Vec2 u, float) const {
+std::optional<BsdfSample> MicrofacetBrdf::sample(Vec3 wo, Vec2 u, float) const {
   if (wo.z <= 0.0f) return std::nullopt;
-  const Vec3 m = sample_ggx_visible_normal(wo, u, alpha);
+  const Vec3 m = ggx.sample_visible_normal(wo, u);
   const float wo_dot_m = glm::dot(wo, m);
   if (!(wo_dot_m > 0.0f)) return std::nullopt;
   const Vec3 wi = 2.0f * wo_dot_m * m - wo;
   if (wi.z <= 0.0f) return std::nullopt;  // reflected below the surface: masked, a wasted sample
-  const float p = pdf(wi, wo);
+  const float p = pdf(wo, wi);
   if (!(p > 0.0f)) return std::nullopt;
-  return BrdfSample{wi, eval(wi, wo) * wi.z / p, p, false};
+  return BsdfSample{wi, eval(wo, wi) * wi.z / p, p, false};
 }
 
-float MicrofacetBrdf::pdf(Vec3 wi, Vec3 wo) const {
+float MicrofacetBrdf::pdf(Vec3 wo, Vec3 wi) const {
   if (wi.z <= 0.0f || wo.z <= 0.0f) return 0.0f;
-  const Vec3 half = wi + wo;
+  const Vec3 half = wo + wi;
   if (glm::dot(half, half) == 0.0f) return 0.0f;
   const Vec3 h = glm::normalize(half);
-  return ggx_visible_normal_pdf(wo, h, alpha) / (4.0f * glm::dot(wo, h));
+  return ggx.visible_normal_pdf(wo, h) / (4.0f * glm::dot(wo, h));
 }
 
 }  // namespace rt

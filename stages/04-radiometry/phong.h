@@ -7,7 +7,7 @@
 // incidence, its largest value.
 #pragma once
 
-#include "04-radiometry/brdf_sample.h"
+#include "04-radiometry/bsdf_sample.h"
 
 #include <optional>
 
@@ -19,13 +19,13 @@ struct PhongBrdf {
   float exponent;  // n >= 0: larger is glossier
 
   // Task stage4.brdf.phong: f_r as above, when wi and wo are both above the surface.
-  Color eval(Vec3 wi, Vec3 wo) const;
+  Color eval(Vec3 wo, Vec3 wi) const;
   // A mixture: with probability diffuse_probability() a cosine-weighted direction, otherwise one
   // from the lobe, cos(alpha) = u0^(1 / (n + 1)) about the mirror direction, whose density is
   // (n + 1) / (2 pi) cos^n(alpha). The pdf is the mixture's, so either choice gives the same
   // weight for the same wi (one-sample MIS with the balance heuristic).
-  std::optional<BrdfSample> sample(Vec3 wo, Vec2 u, float u_lobe) const;
-  float pdf(Vec3 wi, Vec3 wo) const;
+  std::optional<BsdfSample> sample(Vec3 wo, Vec2 u, float u_lobe) const;
+  float pdf(Vec3 wo, Vec3 wi) const;
   // The probability of sampling the diffuse part: its share of the total reflectance.
   float diffuse_probability() const;
 };

@@ -1,23 +1,24 @@
 #include "04-radiometry/specular.h"
 
 #include "02-whitted/optics.h"
+#include "common/frame.h"
 
 namespace rt {
 
-std::optional<BrdfSample> MirrorBrdf::sample(Vec3 wo, Vec2, float) const {
+std::optional<BsdfSample> MirrorBrdf::sample(Vec3 wo, Vec2, float) const {
   if (wo.z <= 0.0f) return std::nullopt;
-  return BrdfSample{Vec3(-wo.x, -wo.y, wo.z), reflectance, 1.0f, true};
+  return BsdfSample{mirror_local(wo), reflectance, 1.0f, true};
 }
 
-std::optional<BrdfSample> DielectricBsdf::sample(Vec3 wo, Vec2, float u_lobe) const {
+std::optional<BsdfSample> DielectricBsdf::sample(Vec3 wo, Vec2, float u_lobe) const {
   if (wo.z <= 0.0f) return std::nullopt;
   const Vec3 normal(0.0f, 0.0f, 1.0f);
   const float f = fresnel_dielectric(wo.z, eta_outside, eta_inside);
-  if (u_lobe < f) return BrdfSample{Vec3(-wo.x, -wo.y, wo.z), Color(1.0f), f, true};
+  if (u_lobe < f) return BsdfSample{mirror_local(wo), Color(1.0f), f, true};
   const std::optional<Vec3> wt = refract(-wo, normal, eta_outside, eta_inside);
-  if (!wt) return BrdfSample{Vec3(-wo.x, -wo.y, wo.z), Color(1.0f), 1.0f, true};  // total internal reflection
+  if (!wt) return BsdfSample{mirror_local(wo), Color(1.0f), 1.0f, true};  // total internal reflection
   const float scale = eta_outside / eta_inside;
-  return BrdfSample{*wt, Color(scale * scale), 1.0f - f, true};
+  return BsdfSample{*wt, Color(scale * scale), 1.0f - f, true};
 }
 
 }  // namespace rt

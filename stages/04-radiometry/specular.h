@@ -3,7 +3,7 @@
 // are 0 and only sample() can find that direction.
 #pragma once
 
-#include "04-radiometry/brdf_sample.h"
+#include "04-radiometry/bsdf_sample.h"
 
 #include <optional>
 
@@ -13,8 +13,8 @@ struct MirrorBrdf {
   Color reflectance;
 
   Color eval(Vec3, Vec3) const { return Color(0.0f); }
-  // wi = (-wo.x, -wo.y, wo.z), weight = reflectance, probability 1.
-  std::optional<BrdfSample> sample(Vec3 wo, Vec2 u, float u_lobe) const;
+  // wi = mirror_local(wo) = (-wo.x, -wo.y, wo.z), weight = reflectance, probability 1.
+  std::optional<BsdfSample> sample(Vec3 wo, Vec2 u, float u_lobe) const;
   float pdf(Vec3, Vec3) const { return 0.0f; }
 };
 
@@ -27,7 +27,7 @@ struct DielectricBsdf {
   float eta_inside;   // index on the other side
 
   Color eval(Vec3, Vec3) const { return Color(0.0f); }
-  std::optional<BrdfSample> sample(Vec3 wo, Vec2 u, float u_lobe) const;
+  std::optional<BsdfSample> sample(Vec3 wo, Vec2 u, float u_lobe) const;
   float pdf(Vec3, Vec3) const { return 0.0f; }
 };
 

@@ -4,15 +4,10 @@
 
 namespace rt {
 
-namespace {
-
-// A unit vector from cos(theta) and phi about +z.
 Vec3 from_cos_theta_phi(float cos_theta, float phi) {
   const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
   return Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta);
 }
-
-}  // namespace
 
 Vec3 sample_uniform_hemisphere(Vec2 u) { return from_cos_theta_phi(u.x, 2.0f * kPi * u.y); }
 
@@ -74,51 +69,43 @@ Vec3 sample_uniform_triangle(Vec2 u) {
   // END TASK
 }
 
-float ggx_ndf(Vec3 m, float alpha) {
-  if (m.z <= 0.0f) return 0.0f;
-  const float a2 = alpha * alpha;
-  const float d = (a2 - 1.0f) * m.z * m.z + 1.0f;
-  return a2 / (kPi * d * d);
+namespace {
+
+// u1 = phi / (2 pi), phi the azimuth of w in [0, 2 pi).
+float azimuth_fraction(float x, float y) {
+  const float phi = std::atan2(y, x);
+  return (phi < 0.0f ? phi + 2.0f * kPi : phi) * (0.5f * kInvPi);
 }
 
-float ggx_lambda(Vec3 w, float alpha) {
-  const float cos2 = w.z * w.z;
-  if (cos2 == 0.0f) return kInfinity;  // grazing: fully masked
-  const float tan2 = std::max(0.0f, 1.0f - cos2) / cos2;
-  return 0.5f * (std::sqrt(1.0f + alpha * alpha * tan2) - 1.0f);
+}  // namespace
+
+Vec2 invert_uniform_hemisphere(Vec3 w) { return Vec2(w.z, azimuth_fraction(w.x, w.y)); }
+
+Vec2 invert_uniform_sphere(Vec3 w) { return Vec2(0.5f * (1.0f - w.z), azimuth_fraction(w.x, w.y)); }
+
+Vec2 invert_cosine_hemisphere(Vec3 w) { return invert_uniform_disk(Vec2(w.x, w.y)); }
+
+Vec2 invert_uniform_cone(Vec3 w, float cos_theta_max) {
+  return Vec2((1.0f - w.z) / (1.0f - cos_theta_max), azimuth_fraction(w.x, w.y));
 }
 
-Vec3 sample_ggx_normal(Vec2 u, float alpha) {
-  const float tan2 = alpha * alpha * u.x / (1.0f - u.x);
-  return from_cos_theta_phi(1.0f / std::sqrt(1.0f + tan2), 2.0f * kPi * u.y);
+Vec2 invert_uniform_disk(Vec2 p) {
+  const float r = glm::length(p);
+  float a, b;
+  if (std::abs(p.x) >= std::abs(p.y)) {
+    a = p.x >= 0.0f ? r : -r;
+    b = a == 0.0f ? 0.0f : a * std::atan(p.y / p.x) / (0.25f * kPi);
+  } else {
+    b = p.y >= 0.0f ? r : -r;
+    const float phi = std::atan2(p.y / b, p.x / b);
+    a = b * (0.5f * kPi - phi) / (0.25f * kPi);
+  }
+  return Vec2(0.5f * (a + 1.0f), 0.5f * (b + 1.0f));
 }
 
-Vec3 sample_ggx_visible_normal(Vec3 wo, Vec2 u, float alpha) {
-  // BEGIN TASK stage4.warp.ggx_visible
-  // 1. Stretch wo into the configuration where the microsurface is a hemisphere (alpha = 1).
-  const Vec3 v = glm::normalize(Vec3(alpha * wo.x, alpha * wo.y, wo.z));
-  // 2. An orthonormal basis around v.
-  const float len2 = v.x * v.x + v.y * v.y;
-  const Vec3 t1 = len2 > 0.0f ? Vec3(-v.y, v.x, 0.0f) / std::sqrt(len2) : Vec3(1.0f, 0.0f, 0.0f);
-  const Vec3 t2 = glm::cross(v, t1);
-  // 3. A point on the disk the hemisphere projects to along v: the near half-disk is seen whole,
-  //    the far half foreshortened by v.z, hence the squeeze of the second coordinate.
-  const Vec2 d = sample_uniform_disk(u);
-  const float s = 0.5f * (1.0f + v.z);
-  const float p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - d.x * d.x)) + s * d.y;
-  // 4. Lift it onto the hemisphere, then unstretch the normal.
-  const Vec3 n = d.x * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - p2 * p2)) * v;
-  return glm::normalize(Vec3(alpha * n.x, alpha * n.y, std::max(0.0f, n.z)));
-  // PLACEHOLDER
-  // report_unfinished_task("stage4.warp.ggx_visible");
-  // (void)wo, (void)u, (void)alpha;
-  // return Vec3(0.0f, 0.0f, 1.0f);
-  // END TASK
-}
-
-float ggx_visible_normal_pdf(Vec3 wo, Vec3 m, float alpha) {
-  if (wo.z <= 0.0f) return 0.0f;
-  return ggx_smith_g1(wo, alpha) * std::max(0.0f, glm::dot(wo, m)) * ggx_ndf(m, alpha) / wo.z;
+Vec2 invert_uniform_triangle(Vec3 b) {
+  const float s = 1.0f - b.x;  // sqrt(u0)
+  return Vec2(s * s, s > 0.0f ? b.y / s : 0.0f);
 }
 
 }  // namespace rt

@@ -14,6 +14,9 @@ namespace rt {
 
 // ---- Hemisphere and sphere ------------------------------------------------------------------
 
+// The unit vector at polar angle theta (given by its cosine) and azimuth phi about +z.
+Vec3 from_cos_theta_phi(float cos_theta, float phi);
+
 // Uniform over the upper hemisphere: z = u0, phi = 2 pi u1 (dw = dz dphi, so a uniform z is a
 // uniform solid angle: Archimedes' hat-box theorem). pdf = 1 / (2 pi).
 Vec3 sample_uniform_hemisphere(Vec2 u);
@@ -37,6 +40,7 @@ inline float uniform_cone_pdf(float cos_theta_max) { return 1.0f / (2.0f * kPi *
 
 // ---- Disk and triangle (area densities) -------------------------------------------------------
 
+
 // Task stage4.warp.concentric_disk. Uniform over the unit disk by Shirley and Chiu's concentric
 // map ("A Low Distortion Map Between Disk and Square", JGT 2(3), 1997): the square's concentric
 // squares go to the disk's concentric circles, so strata stay compact. pdf = 1 / pi per unit area.
@@ -48,30 +52,19 @@ inline float uniform_disk_pdf(Vec2 p) { return p.x * p.x + p.y * p.y <= 1.0f ? k
 // 1990; the square root undoes the triangle's width growing linearly). The density is 1 / area.
 Vec3 sample_uniform_triangle(Vec2 u);
 
-// ---- The GGX microfacet distribution ----------------------------------------------------------
-// Trowbridge & Reitz (1975), named GGX by Walter, Marschner, Li & Torrance ("Microfacet Models for
-// Refraction through Rough Surfaces", EGSR 2007). alpha is the roughness (the slope spread);
-// m is a microfacet normal in the local frame.
-
-// D(m) = alpha^2 / (pi ((alpha^2 - 1) cos^2 theta_m + 1)^2), Walter et al. eq. 33; it is normalized
-// so that the projected microfacet area is the macro-surface's: integral D(m) cos theta_m dm = 1.
-float ggx_ndf(Vec3 m, float alpha);
-// Smith's Lambda for GGX, (-1 + sqrt(1 + alpha^2 tan^2 theta)) / 2 (Heitz, "Understanding the
-// Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT 3(2), 2014, eq. 72).
-float ggx_lambda(Vec3 w, float alpha);
-// Smith masking of one direction, G1 = 1 / (1 + Lambda(w)).
-inline float ggx_smith_g1(Vec3 w, float alpha) { return 1.0f / (1.0f + ggx_lambda(w, alpha)); }
-
-// Microfacet normals distributed as D(m) cos(theta_m) (Walter et al. eq. 35-36):
-// tan^2 theta = alpha^2 u0 / (1 - u0), phi = 2 pi u1. pdf = D(m) cos(theta_m).
-Vec3 sample_ggx_normal(Vec2 u, float alpha);
-inline float ggx_normal_pdf(Vec3 m, float alpha) { return m.z > 0.0f ? ggx_ndf(m, alpha) * m.z : 0.0f; }
-
-// Task stage4.warp.ggx_visible. Only the normals visible from wo, distributed as
-// D_wo(m) = G1(wo) max(0, wo . m) D(m) / cos(theta_o) (Heitz, "Sampling the GGX Distribution of
-// Visible Normals", JCGT 7(4), 2018): stretch wo to the alpha = 1 configuration, sample the
-// projected hemisphere there, unstretch. Samples never face away from wo, so none is wasted.
-Vec3 sample_ggx_visible_normal(Vec3 wo, Vec2 u, float alpha);
-float ggx_visible_normal_pdf(Vec3 wo, Vec3 m, float alpha);
+// ---- Inverses -------------------------------------------------------------------------------
+// Each returns the u that the warp of the same name maps to its argument (pbrt-v4 keeps such an
+// inverse beside every warp): what a stratified or low-discrepancy sampler needs to place a given
+// point or direction, and what the tests use to check that a warp is one to one. Arguments are
+// points or directions the warp can produce (on the disk, above the surface, inside the cone).
+Vec2 invert_uniform_hemisphere(Vec3 w);
+Vec2 invert_uniform_sphere(Vec3 w);
+Vec2 invert_cosine_hemisphere(Vec3 w);
+Vec2 invert_uniform_cone(Vec3 w, float cos_theta_max);
+// The concentric map's inverse: in the sector |x| >= |y| the radius was a = 2 u0 - 1 and
+// y / x = tan(pi/4 b / a); in the other, b = 2 u1 - 1 and the angle pi/2 - pi/4 a / b.
+Vec2 invert_uniform_disk(Vec2 p);
+// From barycentrics: u0 = (1 - b0)^2, u1 = b1 / (1 - b0).
+Vec2 invert_uniform_triangle(Vec3 b);
 
 }  // namespace rt

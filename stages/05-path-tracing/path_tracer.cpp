@@ -39,7 +39,7 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
   Ray ray = camera_ray;
   // What the previous bounce was: a delta lobe (or the camera), and the density it sampled with.
   bool after_delta = true;
-  float brdf_pdf = 0.0f;
+  float bsdf_pdf = 0.0f;
   Vec3 previous_point(0.0f);
 
   for (int bounce = 0;; ++bounce) {
@@ -57,7 +57,7 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
       if (!samples_lights || after_delta) {
         radiance += beta * le;
       } else if (integrator == PathIntegrator::mis) {
-        const float w = power_heuristic(brdf_pdf, light_sampling_pdf(scene, previous_point, *hit));
+        const float w = power_heuristic(bsdf_pdf, light_sampling_pdf(scene, previous_point, *hit));
         radiance += beta * le * w;
       }
     }
@@ -65,15 +65,15 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
     // report_unfinished_task("stage5.path.emitted");
     // const Color le = scene.emitted(*hit);
     // if (!samples_lights || after_delta) radiance += beta * le;
-    // (void)brdf_pdf, (void)previous_point;  // what the MIS weight needs
+    // (void)bsdf_pdf, (void)previous_point;  // what the MIS weight needs
     // END TASK
     if (integrator == PathIntegrator::naive ? bounce >= options.max_depth : bounce >= options.max_bounces) break;
 
     const ShadingPoint at = make_shading_point(scene, *hit, -ray.direction);
     // BEGIN TASK stage5.path.next_event
-    if (samples_lights && !at.brdf.is_delta()) {
+    if (samples_lights && !at.bsdf.is_delta()) {
       const DirectLightSample light = sample_direct_light(scene, at, rng, options.offset);
-      const float w = integrator == PathIntegrator::mis ? power_heuristic(light.pdf, at.brdf.pdf(light.wi, at.wo)) : 1.0f;
+      const float w = integrator == PathIntegrator::mis ? power_heuristic(light.pdf, at.bsdf.pdf(at.wo, light.wi)) : 1.0f;
       radiance += beta * light.value * w;
     }
     // PLACEHOLDER
@@ -81,11 +81,11 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
     // END TASK
 
     const Vec2 u = rng.uniform2();
-    const std::optional<BrdfSample> s = at.brdf.sample(at.wo, u, rng.uniform());
+    const std::optional<BsdfSample> s = at.bsdf.sample(at.wo, u, rng.uniform());
     if (!s) break;
     beta *= s->weight;
     after_delta = s->delta;
-    brdf_pdf = s->pdf;
+    bsdf_pdf = s->pdf;
     previous_point = hit->point;
     ray = spawn_ray(*hit, at.frame.to_world(s->wi), options.offset);
 

@@ -1,5 +1,5 @@
 // Stage 5: Monte Carlo path tracing. The rendering equation
-//     L(x, wo) = Le(x, wo) + integral_H f_r(wi -> wo) L(x', -wi) cos(theta_i) dwi,
+//     L(x, wo) = Le(x, wo) + integral_H f_r(wo, wi) L(x', -wi) cos(theta_i) dwi,
 // written L = E + K L with K the transport operator, has the Neumann series L = sum_k K^k E: light
 // that has bounced k times. A path tracer estimates every term at once by following one random
 // direction per bounce (N = 1 per bounce keeps the cost of a path linear in its length, where N > 1

@@ -13,7 +13,7 @@ TEST(ParallelForTiles, VisitsEveryPixelExactlyOnce) {
   for (int threads : {1, 2, 7})
     for (auto [w, h] : {std::pair{1, 1}, std::pair{16, 16}, std::pair{37, 5}, std::pair{100, 65}}) {
       std::vector<std::atomic<int>> visits(size_t(w * h));
-      parallel_for_tiles(w, h, threads, [&](const Tile& t) {
+      parallel_for_tiles(w, h, threads, [&](const PixelRect& t) {
         EXPECT_LE(t.x1 - t.x0, kTileSize);
         for (int y = t.y0; y < t.y1; ++y)
           for (int x = t.x0; x < t.x1; ++x) ++visits[size_t(y * w + x)];
@@ -25,7 +25,7 @@ TEST(ParallelForTiles, VisitsEveryPixelExactlyOnce) {
 TEST(ParallelForTiles, RethrowsTheFirstErrorAndStops) {
   std::atomic<int> tiles_run{0};
   EXPECT_THROW(parallel_for_tiles(1024, 1024, 2,
-                                  [&](const Tile&) {
+                                  [&](const PixelRect&) {
                                     ++tiles_run;
                                     throw std::runtime_error("tile failed");
                                   }),

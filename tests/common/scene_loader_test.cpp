@@ -211,6 +211,8 @@ INSTANTIATE_TEST_SUITE_P(
                     "/materials/m/checker/size: checker size must be positive, got 0"},
         BrokenScene{"phong reflecting more than it gets", "{" + kCamera + R"(, "materials": {"m": {"type": "phong", "albedo": [0.7,0.7,0.7], "specular": [0.2,0.4,0.2]}}, "shapes": []})",
                     "/materials/m: albedo + specular exceeds 1 in some channel"},
+        BrokenScene{"phong checker reflecting more than it gets", "{" + kCamera + R"(, "materials": {"m": {"type": "phong", "albedo": [0.2,0.2,0.2], "specular": [0.2,0.2,0.2], "checker": {"albedo": [0.9,0.5,0.5], "size": 1}}}, "shapes": []})",
+                    "/materials/m: albedo + specular exceeds 1 in some channel"},
         BrokenScene{"microfacet without roughness", "{" + kCamera + R"(, "materials": {"m": {"type": "microfacet", "roughness": 0}}, "shapes": []})",
                     "/materials/m/roughness: roughness (GGX alpha) must be in [0.001, 1], got 0"},
         BrokenScene{"disk of radius zero", scene_with_shape(R"({"type": "disk", "center": [0,0,0], "normal": [0,1,0], "radius": 0, "material": "m"})"),

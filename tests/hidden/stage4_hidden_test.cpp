@@ -56,9 +56,9 @@ TEST(HiddenLambert, RandomAlbedosGiveRhoOverPiAndWeightRho) {
     const Color rho(rng.uniform(), rng.uniform(), rng.uniform());
     const LambertBrdf brdf{rho};
     const Vec3 wo = sample_cosine_hemisphere(rng.uniform2()), wi = sample_cosine_hemisphere(rng.uniform2());
-    const Color f = brdf.eval(wi, wo);
+    const Color f = brdf.eval(wo, wi);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[c], rho[c] / kPi, 1e-6f);
-    const std::optional<BrdfSample> s = brdf.sample(wo, rng.uniform2(), rng.uniform());
+    const std::optional<BsdfSample> s = brdf.sample(wo, rng.uniform2(), rng.uniform());
     ASSERT_TRUE(s);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(s->weight[c], rho[c], 1e-5f);
     EXPECT_NEAR(s->pdf, s->wi.z / kPi, 1e-5f);

@@ -2,7 +2,7 @@
 // (chi-square), the pdf integrates to what the sampler delivers, it is reciprocal, and it never
 // reflects more than it receives.
 #include "02-whitted/optics.h"
-#include "04-radiometry/brdf.h"
+#include "04-radiometry/bsdf.h"
 #include "04-radiometry/warp.h"
 #include "chi_square.h"
 
@@ -21,15 +21,15 @@ Vec3 direction(float theta, float phi = 0.0f) {
 }
 
 // The glossy models over the parameters the tests sweep: roughness from sharp to very rough.
-std::vector<std::pair<std::string, Brdf>> glossy_models() {
-  std::vector<std::pair<std::string, Brdf>> models;
-  models.emplace_back("lambert", Brdf(LambertBrdf{Color(0.6f, 0.5f, 0.4f)}));
+std::vector<std::pair<std::string, Bsdf>> glossy_models() {
+  std::vector<std::pair<std::string, Bsdf>> models;
+  models.emplace_back("lambert", Bsdf(LambertBrdf{Color(0.6f, 0.5f, 0.4f)}));
   for (const float n : {1.0f, 20.0f, 200.0f}) {
-    models.emplace_back("phong specular-only n=" + std::to_string(n), Brdf(PhongBrdf{Color(0.0f), Color(0.9f), n}));
-    models.emplace_back("phong mixed n=" + std::to_string(n), Brdf(PhongBrdf{Color(0.3f), Color(0.6f), n}));
+    models.emplace_back("phong specular-only n=" + std::to_string(n), Bsdf(PhongBrdf{Color(0.0f), Color(0.9f), n}));
+    models.emplace_back("phong mixed n=" + std::to_string(n), Bsdf(PhongBrdf{Color(0.3f), Color(0.6f), n}));
   }
   for (const float alpha : {0.05f, 0.2f, 0.6f, 1.0f})
-    models.emplace_back("ggx alpha=" + std::to_string(alpha), Brdf(MicrofacetBrdf{Color(1.0f, 0.8f, 0.5f), alpha}));
+    models.emplace_back("ggx alpha=" + std::to_string(alpha), Bsdf(MicrofacetBrdf{Color(1.0f, 0.8f, 0.5f), GgxDistribution{alpha}}));
   return models;
 }
 
@@ -50,7 +50,7 @@ TEST(BrdfChiSquare, SamplersDrawFromTheirPdf) {
             if (!s) return std::nullopt;
             return s->wi;
           },
-          [&](Vec3 wi) { return brdf.pdf(wi, wo); });
+          [&](Vec3 wi) { return brdf.pdf(wo, wi); });
       EXPECT_TRUE(r.passed) << name << ", theta_o " << theta_o << ": " << r.message;
       ++tested;
     }
@@ -60,7 +60,7 @@ TEST(BrdfChiSquare, SamplersDrawFromTheirPdf) {
 
 TEST(BrdfChiSquare, RejectsAWrongGgxJacobian) {
   // The density of the reflected direction without the Jacobian 1 / (4 |wo . m|) of the reflection.
-  const MicrofacetBrdf brdf{Color(1.0f), 0.4f};
+  const MicrofacetBrdf brdf{Color(1.0f), GgxDistribution{0.4f}};
   const Vec3 wo = direction(0.9f);
   const auto r = sphere_chi_square(
       SphereGrid{20, 40, 0.0, kHalfPi}, 1000000, 12,
@@ -72,7 +72,7 @@ TEST(BrdfChiSquare, RejectsAWrongGgxJacobian) {
       [&](Vec3 wi) {
         if (wi.z <= 0.0f) return 0.0f;
         const Vec3 h = glm::normalize(wi + wo);
-        return ggx_visible_normal_pdf(wo, h, 0.4f);
+        return GgxDistribution{0.4f}.visible_normal_pdf(wo, h);
       });
   EXPECT_FALSE(r.passed) << r.message;
 }
@@ -87,8 +87,8 @@ TEST(BrdfPdf, SampleAndPdfAgree) {
       if (!s) continue;
       ASSERT_FALSE(s->delta);
       ASSERT_GT(s->wi.z, 0.0f) << name;
-      EXPECT_NEAR(s->pdf, brdf.pdf(s->wi, wo), 1e-3f * s->pdf) << name;
-      const Color expected = brdf.eval(s->wi, wo) * s->wi.z / s->pdf;
+      EXPECT_NEAR(s->pdf, brdf.pdf(wo, s->wi), 1e-3f * s->pdf) << name;
+      const Color expected = brdf.eval(wo, s->wi) * s->wi.z / s->pdf;
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(s->weight[c], expected[c], 1e-4f * (1.0f + expected[c])) << name;
     }
   }
@@ -100,7 +100,7 @@ TEST(BrdfPdf, IntegratesToWhatTheSamplerDelivers) {
     if (name.find("alpha=0.05") != std::string::npos || name.find("n=200") != std::string::npos) continue;
     const Vec3 wo = direction(1.0f, 0.3f);
     const double integral = integrate_2d(
-        [&](double t, double p) { return brdf.pdf(testing::direction_from_angles(t, p), wo) * std::sin(t); }, 0.0,
+        [&](double t, double p) { return brdf.pdf(wo, testing::direction_from_angles(t, p)) * std::sin(t); }, 0.0,
         kHalfPi, 0.0, 2.0 * testing::kPiD, 600);
     constexpr int kN = 400000;
     int delivered = 0;
@@ -121,7 +121,7 @@ TEST(BrdfProperties, Reciprocity) {
     Rng rng(15, 0, 0);
     for (int k = 0; k < 5000; ++k) {
       const Vec3 a = sample_uniform_hemisphere(rng.uniform2()), b = sample_uniform_hemisphere(rng.uniform2());
-      const Color fab = brdf.eval(a, b), fba = brdf.eval(b, a);
+      const Color fab = brdf.eval(b, a), fba = brdf.eval(a, b);
       for (int c = 0; c < 3; ++c) ASSERT_NEAR(fab[c], fba[c], 1e-5f * (1.0f + fab[c])) << name;
     }
   }
@@ -132,7 +132,7 @@ TEST(BrdfProperties, Reciprocity) {
 struct Estimate {
   double mean, standard_error;
 };
-Estimate directional_albedo(const Brdf& brdf, Vec3 wo, int channel, int samples, std::uint64_t seed) {
+Estimate directional_albedo(const Bsdf& brdf, Vec3 wo, int channel, int samples, std::uint64_t seed) {
   Rng rng(seed, 0, 0);
   double sum = 0.0, sum2 = 0.0;
   for (int k = 0; k < samples; ++k) {
@@ -148,12 +148,12 @@ Estimate directional_albedo(const Brdf& brdf, Vec3 wo, int channel, int samples,
 
 TEST(BrdfProperties, NoModelReflectsMoreThanItReceives) {
   // White versions (reflectance 1) are the hardest case.
-  std::vector<std::pair<std::string, Brdf>> white;
+  std::vector<std::pair<std::string, Bsdf>> white;
   for (const float n : {0.0f, 1.0f, 10.0f, 100.0f, 1000.0f})
-    white.emplace_back("phong n=" + std::to_string(n), Brdf(PhongBrdf{Color(0.0f), Color(1.0f), n}));
-  white.emplace_back("phong half and half", Brdf(PhongBrdf{Color(0.5f), Color(0.5f), 30.0f}));
+    white.emplace_back("phong n=" + std::to_string(n), Bsdf(PhongBrdf{Color(0.0f), Color(1.0f), n}));
+  white.emplace_back("phong half and half", Bsdf(PhongBrdf{Color(0.5f), Color(0.5f), 30.0f}));
   for (const float alpha : {0.01f, 0.1f, 0.3f, 0.6f, 1.0f})
-    white.emplace_back("ggx alpha=" + std::to_string(alpha), Brdf(MicrofacetBrdf{Color(1.0f), alpha}));
+    white.emplace_back("ggx alpha=" + std::to_string(alpha), Bsdf(MicrofacetBrdf{Color(1.0f), GgxDistribution{alpha}}));
   for (const auto& [name, brdf] : white)
     for (const float theta_o : {0.0f, 0.4f, 0.8f, 1.2f, 1.5f}) {
       const Estimate a = directional_albedo(brdf, direction(theta_o), 0, 100000, 16);
@@ -164,14 +164,14 @@ TEST(BrdfProperties, NoModelReflectsMoreThanItReceives) {
 TEST(BrdfProperties, NormalizationsAreExact) {
   // The normalized Phong lobe's albedo is exactly rho_s at normal incidence ((n + 2) / (2 pi)).
   for (const float n : {1.0f, 10.0f, 100.0f}) {
-    const Estimate a = directional_albedo(Brdf(PhongBrdf{Color(0.0f), Color(1.0f), n}), Vec3(0, 0, 1), 0, 200000, 17);
+    const Estimate a = directional_albedo(Bsdf(PhongBrdf{Color(0.0f), Color(1.0f), n}), Vec3(0, 0, 1), 0, 200000, 17);
     EXPECT_NEAR(a.mean, 1.0, 4.0 * a.standard_error + 1e-4) << n;
   }
   // A smooth GGX mirror with F0 = 1 reflects nearly everything at normal incidence, and loses
   // energy (single scattering) as it gets rough.
-  const Estimate smooth = directional_albedo(Brdf(MicrofacetBrdf{Color(1.0f), 0.01f}), Vec3(0, 0, 1), 0, 100000, 18);
+  const Estimate smooth = directional_albedo(Bsdf(MicrofacetBrdf{Color(1.0f), GgxDistribution{0.01f}}), Vec3(0, 0, 1), 0, 100000, 18);
   EXPECT_GT(smooth.mean, 0.995);
-  const Estimate rough = directional_albedo(Brdf(MicrofacetBrdf{Color(1.0f), 1.0f}), direction(1.2f), 0, 100000, 18);
+  const Estimate rough = directional_albedo(Bsdf(MicrofacetBrdf{Color(1.0f), GgxDistribution{1.0f}}), direction(1.2f), 0, 100000, 18);
   EXPECT_LT(rough.mean, 0.9);
 }
 
@@ -186,12 +186,12 @@ TEST(BrdfProperties, GgxAlbedoMatchesQuadrature) {
   } table[] = {{0.3f, 0.0f, 0.8774}, {0.3f, 60.0f, 0.8217}, {0.5f, 0.0f, 0.6878}, {0.5f, 80.0f, 0.8053},
                {1.0f, 0.0f, 0.3069}, {1.0f, 60.0f, 0.4507}};
   for (const auto& row : table) {
-    const Brdf brdf(MicrofacetBrdf{Color(1.0f), row.alpha});
+    const Bsdf brdf(MicrofacetBrdf{Color(1.0f), GgxDistribution{row.alpha}});
     const Vec3 wo = direction(radians(row.theta_o_degrees));
     const double quadrature = integrate_2d(
         [&](double t, double p) {
           const Vec3 wi = testing::direction_from_angles(t, p);
-          return double(brdf.eval(wi, wo).x) * wi.z * std::sin(t);
+          return double(brdf.eval(wo, wi).x) * wi.z * std::sin(t);
         },
         0.0, kHalfPi, 0.0, 2.0 * testing::kPiD, 400);
     const Estimate sampled = directional_albedo(brdf, wo, 0, 200000, 21);
@@ -201,7 +201,7 @@ TEST(BrdfProperties, GgxAlbedoMatchesQuadrature) {
 }
 
 TEST(BrdfProperties, WhiteLambertReflectsExactlyEverything) {
-  const Brdf white(LambertBrdf{Color(1.0f)});
+  const Bsdf white(LambertBrdf{Color(1.0f)});
   // Cosine sampling makes every weight exactly 1.
   for (const float theta_o : {0.0f, 0.7f, 1.55f}) {
     const Estimate a = directional_albedo(white, direction(theta_o), 1, 10000, 19);
@@ -212,7 +212,7 @@ TEST(BrdfProperties, WhiteLambertReflectsExactlyEverything) {
   const double q = integrate_2d(
       [&](double t, double p) {
         const Vec3 wi = testing::direction_from_angles(t, p);
-        return double(white.eval(wi, direction(0.5f)).x) * wi.z * std::sin(t);
+        return double(white.eval(direction(0.5f), wi).x) * wi.z * std::sin(t);
       },
       0.0, kHalfPi, 0.0, 2.0 * testing::kPiD, 200);
   EXPECT_NEAR(q, 1.0, 1e-6);
@@ -220,15 +220,15 @@ TEST(BrdfProperties, WhiteLambertReflectsExactlyEverything) {
 
 TEST(BrdfProperties, NothingBelowTheSurface) {
   for (const auto& [name, brdf] : glossy_models()) {
-    EXPECT_EQ(brdf.eval(direction(2.0f), direction(0.3f)), Color(0.0f)) << name;
     EXPECT_EQ(brdf.eval(direction(0.3f), direction(2.0f)), Color(0.0f)) << name;
-    EXPECT_EQ(brdf.pdf(direction(2.0f), direction(0.3f)), 0.0f) << name;
+    EXPECT_EQ(brdf.eval(direction(2.0f), direction(0.3f)), Color(0.0f)) << name;
+    EXPECT_EQ(brdf.pdf(direction(0.3f), direction(2.0f)), 0.0f) << name;
     EXPECT_FALSE(brdf.sample(direction(2.0f), Vec2(0.3f), 0.5f)) << name;
   }
 }
 
 TEST(DeltaLobes, MirrorReflectsAboutTheNormal) {
-  const Brdf mirror(MirrorBrdf{Color(0.9f, 0.8f, 0.7f)});
+  const Bsdf mirror(MirrorBrdf{Color(0.9f, 0.8f, 0.7f)});
   EXPECT_TRUE(mirror.is_delta());
   const Vec3 wo = direction(0.6f, 1.0f);
   const auto s = mirror.sample(wo, Vec2(0.2f), 0.7f);
@@ -238,12 +238,12 @@ TEST(DeltaLobes, MirrorReflectsAboutTheNormal) {
   EXPECT_NEAR(s->wi.y, -wo.y, 1e-7f);
   EXPECT_NEAR(s->wi.z, wo.z, 1e-7f);
   EXPECT_EQ(s->weight, Color(0.9f, 0.8f, 0.7f));
-  EXPECT_EQ(mirror.eval(s->wi, wo), Color(0.0f));
-  EXPECT_EQ(mirror.pdf(s->wi, wo), 0.0f);
+  EXPECT_EQ(mirror.eval(wo, s->wi), Color(0.0f));
+  EXPECT_EQ(mirror.pdf(wo, s->wi), 0.0f);
 }
 
 TEST(DeltaLobes, GlassReflectsWithTheFresnelProbability) {
-  const Brdf glass(DielectricBsdf{1.0f, 1.5f});
+  const Bsdf glass(DielectricBsdf{1.0f, 1.5f});
   const Vec3 wo = direction(1.0f);
   const float f = fresnel_dielectric(wo.z, 1.0f, 1.5f);
   constexpr int kN = 200000;
@@ -267,19 +267,34 @@ TEST(DeltaLobes, GlassReflectsWithTheFresnelProbability) {
   const double sigma = std::sqrt(f * (1.0 - f) / kN);
   EXPECT_NEAR(double(reflected) / kN, f, 4.0 * sigma);
   // From inside beyond the critical angle (asin(1 / 1.5) = 41.8 degrees): always reflected.
-  const auto tir = Brdf(DielectricBsdf{1.5f, 1.0f}).sample(direction(0.8f), Vec2(0.5f), 0.999f);
+  const auto tir = Bsdf(DielectricBsdf{1.5f, 1.0f}).sample(direction(0.8f), Vec2(0.5f), 0.999f);
   ASSERT_TRUE(tir);
   EXPECT_GT(tir->wi.z, 0.0f);
 }
 
-TEST(MakeBrdf, GlassKnowsWhichSideItIsEnteredFrom) {
+// A checker alternates the diffuse albedo for phong as for diffuse: phong once read `albedo` alone.
+TEST(MakeBsdf, PhongReadsTheCheckerAlbedoAtTheHit) {
+  Material phong;
+  phong.type = MaterialType::phong;
+  phong.albedo = Color(0.1f);
+  phong.specular = Color(0.2f);
+  phong.checker = Checker{Color(0.7f), 1.0f};
+  Hit a, b;
+  a.point = Vec3(0.2f, 0.2f, 0.2f);  // the centred cell: the material's albedo
+  b.point = Vec3(1.2f, 0.2f, 0.2f);  // the next one along x: the checker's
+  EXPECT_EQ(std::get<PhongBrdf>(make_bsdf(phong, a).model()).diffuse, Color(0.1f));
+  EXPECT_EQ(std::get<PhongBrdf>(make_bsdf(phong, b).model()).diffuse, Color(0.7f));
+  EXPECT_EQ(std::get<PhongBrdf>(make_bsdf(phong, b).model()).specular, Color(0.2f));
+}
+
+TEST(MakeBsdf, GlassKnowsWhichSideItIsEnteredFrom) {
   Material glass;
   glass.type = MaterialType::dielectric;
   glass.ior = 1.5f;
   Hit front, back;
   front.front_face = true;
   back.front_face = false;
-  const Brdf outside = make_brdf(glass, front), inside = make_brdf(glass, back);
+  const Bsdf outside = make_bsdf(glass, front), inside = make_bsdf(glass, back);
   const auto& from_outside = std::get<DielectricBsdf>(outside.model());
   const auto& from_inside = std::get<DielectricBsdf>(inside.model());
   EXPECT_EQ(from_outside.eta_outside, 1.0f);

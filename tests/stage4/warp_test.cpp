@@ -1,5 +1,6 @@
 // Stage 4: every sample warp draws from exactly the density its pdf claims (chi-square), and every
 // pdf integrates to 1 over its domain.
+#include "04-radiometry/ggx.h"
 #include "04-radiometry/warp.h"
 #include "chi_square.h"
 
@@ -52,8 +53,8 @@ TEST(WarpChiSquare, GgxNormals) {
   for (const float alpha : {0.1f, 0.4f, 1.0f}) {
     const SphereGrid grid{20, 20, 0.0, kHalfPi};
     const auto r = sphere_chi_square(
-        grid, kSamples, 5, [&](Rng& rng) { return std::optional(sample_ggx_normal(rng.uniform2(), alpha)); },
-        [&](Vec3 m) { return ggx_normal_pdf(m, alpha); });
+        grid, kSamples, 5, [&](Rng& rng) { return std::optional(GgxDistribution{alpha}.sample_normal(rng.uniform2())); },
+        [&](Vec3 m) { return GgxDistribution{alpha}.normal_pdf(m); });
     EXPECT_TRUE(r.passed) << "alpha " << alpha << ": " << r.message;
   }
 }
@@ -64,8 +65,8 @@ TEST(WarpChiSquare, GgxVisibleNormals) {
       const Vec3 wo(std::sin(theta_o), 0.0f, std::cos(theta_o));
       const SphereGrid grid{20, 40, 0.0, kHalfPi};
       const auto r = sphere_chi_square(
-          grid, kSamples, 6, [&](Rng& rng) { return std::optional(sample_ggx_visible_normal(wo, rng.uniform2(), alpha)); },
-          [&](Vec3 m) { return ggx_visible_normal_pdf(wo, m, alpha); });
+          grid, kSamples, 6, [&](Rng& rng) { return std::optional(GgxDistribution{alpha}.sample_visible_normal(wo, rng.uniform2())); },
+          [&](Vec3 m) { return GgxDistribution{alpha}.visible_normal_pdf(wo, m); });
       EXPECT_TRUE(r.passed) << "alpha " << alpha << ", theta_o " << theta_o << ": " << r.message;
     }
 }
@@ -137,8 +138,8 @@ TEST(DistributionTest, RejectsAWrongPdf) {
   const Vec3 wo = glm::normalize(Vec3(0.7f, 0.0f, 0.7f));
   EXPECT_FALSE(sphere_chi_square(
                    SphereGrid{20, 40, 0.0, kHalfPi}, kSamples, 9,
-                   [&](Rng& rng) { return std::optional(sample_ggx_visible_normal(wo, rng.uniform2(), 0.5f)); },
-                   [](Vec3 m) { return ggx_normal_pdf(m, 0.5f); })
+                   [&](Rng& rng) { return std::optional(GgxDistribution{0.5f}.sample_visible_normal(wo, rng.uniform2())); },
+                   [](Vec3 m) { return GgxDistribution{0.5f}.normal_pdf(m); })
                    .passed);
 }
 
@@ -155,10 +156,10 @@ TEST(WarpPdf, IntegratesToOne) {
   const float cos_max = std::cos(0.6f);
   EXPECT_NEAR(integrate_over_sphere([&](Vec3) { return uniform_cone_pdf(cos_max); }, 0.6), 1.0, 1e-5);
   for (const float alpha : {0.05f, 0.3f, 1.0f}) {
-    EXPECT_NEAR(integrate_over_sphere([&](Vec3 m) { return ggx_normal_pdf(m, alpha); }, kHalfPi, 2000), 1.0, 1e-3)
+    EXPECT_NEAR(integrate_over_sphere([&](Vec3 m) { return GgxDistribution{alpha}.normal_pdf(m); }, kHalfPi, 2000), 1.0, 1e-3)
         << alpha;
     const Vec3 wo = glm::normalize(Vec3(0.5f, 0.2f, 0.6f));
-    EXPECT_NEAR(integrate_over_sphere([&](Vec3 m) { return ggx_visible_normal_pdf(wo, m, alpha); }, kHalfPi, 2000),
+    EXPECT_NEAR(integrate_over_sphere([&](Vec3 m) { return GgxDistribution{alpha}.visible_normal_pdf(wo, m); }, kHalfPi, 2000),
                 1.0, 1e-3)
         << alpha;
   }
@@ -173,8 +174,8 @@ TEST(WarpEdges, ExtremeNumbersStayOnTheDomain) {
     for (const float b : {0.0f, 0.5f, one_minus}) {
       const Vec2 u(a, b);
       for (const Vec3 w : {sample_uniform_hemisphere(u), sample_cosine_hemisphere(u), sample_uniform_sphere(u),
-                           sample_uniform_cone(u, 0.3f), sample_ggx_normal(u, 0.2f),
-                           sample_ggx_visible_normal(glm::normalize(Vec3(1, 0, 1e-4f)), u, 0.2f)}) {
+                           sample_uniform_cone(u, 0.3f), GgxDistribution{0.2f}.sample_normal(u),
+                           GgxDistribution{0.2f}.sample_visible_normal(glm::normalize(Vec3(1, 0, 1e-4f)), u)}) {
         EXPECT_TRUE(is_finite(w)) << a << " " << b;
         EXPECT_NEAR(glm::length(w), 1.0f, 1e-5f) << a << " " << b;
       }
@@ -183,6 +184,28 @@ TEST(WarpEdges, ExtremeNumbersStayOnTheDomain) {
       const Vec3 t = sample_uniform_triangle(u);
       EXPECT_GE(std::min({t.x, t.y, t.z}), 0.0f);
     }
+}
+
+// Every warp has its inverse: sample then invert gives back u, over a grid of the square that
+// avoids only its edges (where the azimuth wraps or the disk's centre is one point for many u).
+TEST(WarpInverses, InvertingASampleGivesBackItsNumbers) {
+  int checked = 0;
+  for (int i = 1; i < 40; ++i)
+    for (int j = 1; j < 40; ++j) {
+      const Vec2 u(float(i) / 40.0f, float(j) / 40.0f);
+      auto expect_back = [&](Vec2 back, const char* warp) {
+        EXPECT_NEAR(back.x, u.x, 2e-5f) << warp << " at " << u.x << ", " << u.y;
+        EXPECT_NEAR(back.y, u.y, 2e-5f) << warp << " at " << u.x << ", " << u.y;
+        ++checked;
+      };
+      expect_back(invert_uniform_hemisphere(sample_uniform_hemisphere(u)), "uniform hemisphere");
+      expect_back(invert_uniform_sphere(sample_uniform_sphere(u)), "uniform sphere");
+      expect_back(invert_uniform_disk(sample_uniform_disk(u)), "concentric disk");
+      expect_back(invert_cosine_hemisphere(sample_cosine_hemisphere(u)), "cosine hemisphere");
+      expect_back(invert_uniform_cone(sample_uniform_cone(u, 0.6f), 0.6f), "cone");
+      expect_back(invert_uniform_triangle(sample_uniform_triangle(u)), "triangle");
+    }
+  EXPECT_EQ(checked, 6 * 39 * 39);
 }
 
 }  // namespace
