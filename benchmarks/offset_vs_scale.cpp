@@ -1,7 +1,7 @@
 // Writes docs/charts/stage2-offset-vs-scale.csv: wrong shadow decisions (acne and leaks) in the
-// plane-and-sphere scene of stages/02-whitted/acne_experiment.h at scales 1e-3 ... 1e5, for fixed
+// plane-and-sphere scene of stages/experiments/acne_experiment.h at scales 1e-3 ... 1e5, for fixed
 // epsilons and for the two robust offsets. Run through tools/make-charts.sh.
-#include "02-whitted/acne_experiment.h"
+#include "experiments/acne_experiment.h"
 
 #include <cmath>
 #include <cstdio>

@@ -3,7 +3,7 @@
 // relative error in t against long double, next to their cost in ns per call, all from one run.
 //   usage: sphere_precision [OUT.csv]        (stdout without an argument)
 #include "01-ray-casting/sphere_intersection.h"
-#include "01-ray-casting/sphere_precision.h"
+#include "experiments/sphere_precision.h"
 
 #include <benchmark/benchmark.h>
 

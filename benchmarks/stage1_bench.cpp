@@ -5,7 +5,7 @@
 #include "01-ray-casting/ray_caster.h"
 #include "01-ray-casting/render.h"
 #include "01-ray-casting/sphere_intersection.h"
-#include "01-ray-casting/sphere_precision.h"
+#include "experiments/sphere_precision.h"
 
 #include <benchmark/benchmark.h>
 

@@ -1,7 +1,7 @@
 // Stage 2 timings: the two triangle tests on the same rays, and whole renders of the Whitted scene
 // and the point-lit Cornell box. Run: build/release/bin/stage2_bench
 #include "01-ray-casting/render.h"
-#include "02-whitted/triangle_leaks.h"
+#include "experiments/triangle_leaks.h"
 #include "02-whitted/whitted.h"
 #include "common/random.h"
 
@@ -11,7 +11,7 @@ namespace rt {
 namespace {
 
 // 4096 (ray, triangle) pairs from the crack experiment's jittered sphere mesh
-// (stages/02-whitted/triangle_leaks.h). `all_hit`: each ray is aimed at its triangle's centroid.
+// (stages/experiments/triangle_leaks.h). `all_hit`: each ray is aimed at its triangle's centroid.
 // Otherwise each ray (aimed at some shared edge) meets a random triangle, which it almost always
 // misses, as most tests in a brute-force loop do.
 struct TrianglePairs {

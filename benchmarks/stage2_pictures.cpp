@@ -4,7 +4,7 @@
 //                                  behind it: Moeller-Trumbore | watertight
 // and prints how many pixels are wrong in each. Run through tools/make-charts.sh.
 #include "01-ray-casting/render.h"
-#include "02-whitted/acne_experiment.h"
+#include "experiments/acne_experiment.h"
 #include "02-whitted/whitted.h"
 #include "common/image_io.h"
 

@@ -1,7 +1,7 @@
 // Writes docs/charts/stage2-triangle-leaks.csv and prints it as the Markdown table of
 // docs/stage2.md: rays aimed at shared edges and vertices of a closed mesh that pass through it,
-// per triangle test and scale (stages/02-whitted/triangle_leaks.h). Run through tools/make-charts.sh.
-#include "02-whitted/triangle_leaks.h"
+// per triangle test and scale (stages/experiments/triangle_leaks.h). Run through tools/make-charts.sh.
+#include "experiments/triangle_leaks.h"
 
 #include <cmath>
 #include <cstdio>

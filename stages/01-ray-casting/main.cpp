@@ -1,5 +1,6 @@
 // stage1: renders a scene by ray casting with local shading (or one of its debug views).
-#include "01-ray-casting/program.h"
+#include "01-ray-casting/ray_caster.h"
+#include "01-ray-casting/render.h"
 
 int main(int argc, char** argv) {
   using namespace rt;
@@ -20,7 +21,7 @@ int main(int argc, char** argv) {
         const RenderSettings settings = options.settings_for(description);
         const RayCastingScene scene(description);
         const PinholeCamera camera(description.camera, settings.width, settings.height);
-        render_and_write("stage1", options, description, settings, camera, view,
+        render_and_write("stage1", options, description, settings, camera, meaning_of(view),
                          [&](const Ray& ray, Rng&) { return cast_ray(scene, ray, view); });
       });
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "01-ray-casting/ray_casting_scene.h"
+#include "common/program.h"
 
 #include <string>
 
@@ -17,6 +18,10 @@ enum class DebugView {
 
 // "normal" -> DebugView::normal and so on; throws UsageError for an unknown name.
 DebugView debug_view_from_name(const std::string& name);
+// What a view's pixels hold, for the program shell (common/program.h): distances for depth.
+inline PixelMeaning meaning_of(DebugView view) {
+  return view == DebugView::depth ? PixelMeaning::depth : PixelMeaning::radiance;
+}
 
 Color cast_ray(const RayCastingScene& scene, const Ray& ray, DebugView view = DebugView::none);
 

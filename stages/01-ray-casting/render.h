@@ -10,6 +10,7 @@
 #include "common/image.h"
 #include "common/interrupt.h"
 #include "common/parallel.h"
+#include "common/program.h"
 #include "common/progress.h"
 #include "common/random.h"
 #include "common/sample_sums.h"
@@ -91,6 +92,17 @@ SampleSums render_samples(const PinholeCamera& camera, const RenderSettings& set
     });
   }
   return sums;
+}
+
+// A stage program's whole run: stage 1's pixel loop over `camera` with `radiance`, behind the
+// program shell's progress bar and output (common/program.h).
+template <class SamplerType = Rng, class RadianceFn>
+void render_and_write(const char* program, const CommonOptions& options, const SceneDescription& description,
+                      const RenderSettings& settings, const PinholeCamera& camera, PixelMeaning meaning,
+                      RadianceFn&& radiance) {
+  render_with_progress_and_write(program, options, description, settings, meaning, [&](ProgressBar* progress) {
+    return render_samples<SamplerType>(camera, settings, options.threads, radiance, progress);
+  });
 }
 
 // The image: each pixel the mean of its samples (SampleSums::mean).

@@ -1,5 +1,5 @@
 // stage2: renders a scene by Whitted-style recursive ray tracing (or one of its debug views).
-#include "01-ray-casting/program.h"
+#include "01-ray-casting/render.h"
 #include "02-whitted/whitted.h"
 
 #include <map>
@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
         whitted.max_depth = settings.max_depth;
         const WhittedScene scene(description, triangle_method);
         const PinholeCamera camera(description.camera, settings.width, settings.height);
-        render_and_write("stage2", options, description, settings, camera, view, [&](const Ray& ray, Rng&) {
+        render_and_write("stage2", options, description, settings, camera, meaning_of(view), [&](const Ray& ray, Rng&) {
           return view == DebugView::none ? whitted_radiance(scene, ray, whitted) : whitted_debug(scene, ray, view);
         });
       });

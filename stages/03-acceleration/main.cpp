@@ -1,6 +1,6 @@
 // stage3: renders a scene like stage 2, with the bounded primitives in a chosen acceleration
 // structure, and reports what the structure cost and what it bought.
-#include "01-ray-casting/program.h"
+#include "01-ray-casting/render.h"
 #include "02-whitted/whitted.h"
 #include "03-acceleration/bvh_aggregate.h"
 
@@ -98,7 +98,7 @@ int main(int argc, char** argv) {
         whitted.max_depth = settings.max_depth;
         const PinholeCamera camera(description.camera, settings.width, settings.height);
         const auto render_start = std::chrono::steady_clock::now();
-        render_and_write("stage3", options, description, settings, camera, view, [&](const Ray& ray, Rng&) {
+        render_and_write("stage3", options, description, settings, camera, meaning_of(view), [&](const Ray& ray, Rng&) {
           return view == DebugView::none ? whitted_radiance(scene, ray, whitted) : whitted_debug(scene, ray, view);
         });
         const double render_seconds =

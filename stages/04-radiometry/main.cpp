@@ -1,5 +1,5 @@
 // stage4: renders a scene's direct lighting by Monte Carlo integration, with one of four estimators.
-#include "01-ray-casting/program.h"
+#include "01-ray-casting/render.h"
 #include "04-radiometry/direct_lighting.h"
 
 #include <map>
@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
         std::printf("stage4: %zu area emitters, %zu point lights\n", scene.emitters().size(),
                     scene.point_lights().size());
         const PinholeCamera camera(description.camera, settings.width, settings.height);
-        render_and_write("stage4", options, description, settings, camera, DebugView::none,
+        render_and_write("stage4", options, description, settings, camera, PixelMeaning::radiance,
                          [&](const Ray& ray, Sampler& rng) { return direct_radiance(scene, ray, direct, rng); });
       });
 }

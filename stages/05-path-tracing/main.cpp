@@ -1,5 +1,5 @@
 // stage5: renders a scene by Monte Carlo path tracing with one of the lecture's integrators.
-#include "01-ray-casting/program.h"
+#include "01-ray-casting/render.h"
 #include "05-path-tracing/path_render.h"
 
 #include <map>
@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
         const LightingScene scene(description, lighting);
         const PinholeCamera camera(description.camera, settings.width, settings.height);
         SampleGuard guard;
-        render_with_progress_and_write("stage5", options, description, settings, DebugView::none,
+        render_with_progress_and_write("stage5", options, description, settings, PixelMeaning::radiance,
                                        [&](ProgressBar* progress) {
                                          return render_path_samples(scene, camera, settings, path, sampler,
                                                                     options.threads, guard, progress);

@@ -2,7 +2,7 @@
 // the old image alone, a name too long is refused before the render, a planted link is never
 // followed, no output ever holds a non-finite value, and merge checks its batches in O(n log n)
 // (label "reliability").
-#include "01-ray-casting/program.h"
+#include "common/program.h"
 #include "common/batch_merge.h"
 #include "common/error.h"
 #include "common/file_io.h"
@@ -119,7 +119,7 @@ TEST(StopBeforeTheFirstSample, LeavesAnExistingImageAsItWas) {
   request_interrupt(SIGINT);
   const SampleSums none(3, 2);
   try {
-    write_render("stage1", options, "scene.json", description, settings, DebugView::none, none, 0.1);
+    write_render("stage1", options, "scene.json", description, settings, PixelMeaning::radiance, none, 0.1);
     ADD_FAILURE() << "no Interrupted";
   } catch (const Interrupted& stop) {
     EXPECT_EQ(stop.signal_number, SIGINT);
@@ -201,7 +201,7 @@ TEST(NonFiniteValues, ARenderWritesThemBlackAndSaysSo) {
   sums.set(0, 0, Color(std::nanf(""), 1.0f, 1.0f), 1);
   sums.set(1, 0, Color(0.5f), 1);
   ::testing::internal::CaptureStderr();
-  write_render("stage4", options, "scene.json", SceneDescription{}, settings, DebugView::none, sums, 0.1);
+  write_render("stage4", options, "scene.json", SceneDescription{}, settings, PixelMeaning::radiance, sums, 0.1);
   const std::string said = ::testing::internal::GetCapturedStderr();
   EXPECT_EQ(said, "stage4: warning: 1 pixels had a radiance that is not finite and are written black\n");
   const Image image = read_pfm(dir / "nan.pfm");

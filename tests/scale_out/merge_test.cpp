@@ -1,7 +1,7 @@
 // Merging sample batches (common/batch_merge.h) of real path-traced renders: batches and tiles give
 // the single run's image (bit for bit where no pixel's samples are split, up to float summation
 // order where they are), and batches that do not add up are refused with what is wrong.
-#include "01-ray-casting/program.h"
+#include "common/program.h"
 #include "05-path-tracing/path_render.h"
 #include "common/batch_merge.h"
 #include "common/error.h"
@@ -264,7 +264,7 @@ TEST(MergeBatches, AnInterruptedBatchIsMarkedAndMergesOnlyWithPartial) {
   };
   const SampleSums sums = render_samples<Rng>(c.camera, s, 2, radiance);
   EXPECT_THROW(write_render("stage5", options, testing::source_path("assets/scenes/cornell-box.json").string(),
-                            c.description, s, DebugView::none, sums, 1.0),
+                            c.description, s, PixelMeaning::radiance, sums, 1.0),
                Interrupted);
   clear_interrupt();
   const SampleBatch stopped = read_sample_batch(dir / "stopped.json");

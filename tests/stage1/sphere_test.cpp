@@ -1,5 +1,5 @@
 #include "01-ray-casting/sphere_intersection.h"
-#include "01-ray-casting/sphere_precision.h"
+#include "experiments/sphere_precision.h"
 
 #include <gtest/gtest.h>
 
@@ -105,7 +105,7 @@ TEST(Sphere, OriginOnTheSurfaceFindsTheOtherSide) {
 }
 
 // Recipe A1 of the stability notes: a unit sphere at distance D, 1e5 rays aimed at a disk of
-// radius 1.1 around it, answers compared with long double (01-ray-casting/sphere_precision.h).
+// radius 1.1 around it, answers compared with long double (experiments/sphere_precision.h).
 SpherePrecision far_sphere(SphereIntersectFn intersect, float distance) {
   return measure_sphere_precision(intersect, make_far_sphere_rays(distance, 100'000, 1234));
 }

@@ -1,4 +1,4 @@
-#include "02-whitted/acne_experiment.h"
+#include "experiments/acne_experiment.h"
 #include "02-whitted/mesh_instance.h"
 #include "02-whitted/ray_offset.h"
 #include "02-whitted/whitted_scene.h"
@@ -9,7 +9,7 @@
 namespace rt {
 namespace {
 
-// The scale sweep (stages/02-whitted/acne_experiment.h), 64 x 48 pixels per scale.
+// The scale sweep (stages/experiments/acne_experiment.h), 64 x 48 pixels per scale.
 constexpr float kScales[] = {1e-3f, 1.0f, 1e3f, 1e5f};
 constexpr int kWidth = 64, kHeight = 48;
 

@@ -1,5 +1,5 @@
 #include "02-whitted/triangle_intersection.h"
-#include "02-whitted/triangle_leaks.h"
+#include "experiments/triangle_leaks.h"
 #include "common/random.h"
 
 #include <gtest/gtest.h>
@@ -122,7 +122,7 @@ INSTANTIATE_TEST_SUITE_P(Triangle, BothTriangleTests,
                                            TriangleTest{"watertight", TriangleMethod::watertight}),
                          [](const auto& info) { return std::string(info.param.name); });
 
-// The crack test (stages/02-whitted/triangle_leaks.h): rays from inside a closed, jittered mesh
+// The crack test (stages/experiments/triangle_leaks.h): rays from inside a closed, jittered mesh
 // aimed exactly at its shared edges and vertices, at four scales. 3,168 edge rays and 266 vertex
 // rays per scale.
 class Watertight : public ::testing::TestWithParam<float> {};

@@ -1,4 +1,4 @@
-#include "01-ray-casting/program.h"
+#include "common/program.h"
 
 #include "common/error.h"
 #include "common/image_io.h"
@@ -66,7 +66,7 @@ void blacken_non_finite(const char* program, SampleSums& sums) {
 }  // namespace
 
 void write_render(const char* program, const CommonOptions& options, const std::string& scene,
-                  const SceneDescription& description, const RenderSettings& settings, DebugView view,
+                  const SceneDescription& description, const RenderSettings& settings, PixelMeaning meaning,
                   const SampleSums& rendered, double seconds) {
   const std::uint64_t asked = std::uint64_t(settings.window().area()) * std::uint64_t(settings.spp);
   const std::uint64_t done = rendered.total_count();
@@ -83,7 +83,7 @@ void write_render(const char* program, const CommonOptions& options, const std::
     write_sample_batch(batch_of(program, options, scene, description, settings, sums));
   } else {
     Image image = sums.mean();
-    if (view == DebugView::depth && image_format_for(options.out) == ImageFormat::png) scale_depth_for_png(image);
+    if (meaning == PixelMeaning::depth && image_format_for(options.out) == ImageFormat::png) scale_depth_for_png(image);
     write_image(options.out, image);
   }
   if (interrupt_requested()) {

@@ -1,4 +1,4 @@
-#include "01-ray-casting/sphere_precision.h"
+#include "experiments/sphere_precision.h"
 
 #include "common/random.h"
 

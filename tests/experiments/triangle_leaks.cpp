@@ -1,4 +1,4 @@
-#include "02-whitted/triangle_leaks.h"
+#include "experiments/triangle_leaks.h"
 
 #include "common/random.h"
 

@@ -1,4 +1,4 @@
-#include "02-whitted/acne_experiment.h"
+#include "experiments/acne_experiment.h"
 
 #include "01-ray-casting/camera_rays.h"
 #include "02-whitted/whitted_scene.h"
