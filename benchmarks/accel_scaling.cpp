@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: accel_scaling OUT.csv\n");
     return 2;
   }
-  std::vector<std::pair<std::string, std::shared_ptr<PrimitiveSet>>> meshes;
+  std::vector<std::pair<std::string, std::shared_ptr<Primitives>>> meshes;
   for (int e = 2; e <= 6; ++e) meshes.push_back({"sphere 1e" + std::to_string(e), sphere_mesh(std::pow(10.0, e))});
   meshes.push_back({"bunny", single_mesh(load_obj(RT_SOURCE_DIR "/assets/meshes/stanford-bunny.obj"))});
 
@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
     const std::vector<Ray> scattered = incoherent_rays(*set, 16384), camera = coherent_rays(*set, 128);
     auto measure = [&](const std::string& accel, const Aggregate& a, double build_ms, double sah_cost) {
       auto trace = [&a](const Ray& ray) { return a.closest_hit(ray, Interval::positive()).has_value(); };
-      const Row row{accel, name, set->triangle_count(), ns_per_ray(scattered, trace), ns_per_ray(camera, trace), build_ms, sah_cost};
+      const Row row{accel, name, set->size(), ns_per_ray(scattered, trace), ns_per_ray(camera, trace), build_ms, sah_cost};
       rows.push_back(row);
       incoherent[{accel, name}] = row.incoherent_ns;
       std::printf("%-8s %-11s %8zu triangles: %11.1f ns/ray incoherent, %11.1f coherent, build %8.1f ms\n", accel.c_str(),
@@ -89,10 +89,10 @@ int main(int argc, char** argv) {
     }
 #if RT_HAVE_EMBREE
     const auto start = Clock::now();
-    const EmbreeMesh embree(set->meshes[0].mesh);
+    const EmbreeMesh embree(the_mesh(*set));
     const double build_ms = seconds_since(start) * 1e3;
     auto trace = [&embree](const Ray& ray) { return embree.closest_hit(ray).has_value(); };
-    const Row row{"embree", name, set->triangle_count(), ns_per_ray(scattered, trace), ns_per_ray(camera, trace), build_ms, 0.0};
+    const Row row{"embree", name, set->size(), ns_per_ray(scattered, trace), ns_per_ray(camera, trace), build_ms, 0.0};
     rows.push_back(row);
     incoherent[{"embree", name}] = row.incoherent_ns;
     std::printf("%-8s %-11s %8zu triangles: %11.1f ns/ray incoherent, %11.1f coherent, build %8.1f ms\n", "embree",

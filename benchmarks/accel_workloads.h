@@ -3,6 +3,7 @@
 // same mesh and rays as the production ceiling.
 #pragma once
 
+#include "02-whitted/whitted_scene.h"
 #include "03-acceleration/bvh_aggregate.h"
 #include "common/random.h"
 
@@ -17,28 +18,30 @@
 namespace rt::bench {
 
 // A jittered UV sphere with about `triangles` triangles (2 s (s/2 - 1) for s segments).
-inline std::shared_ptr<PrimitiveSet> sphere_mesh(double triangles) {
+// The measurements search stage 2's kinds; their workloads are one triangle mesh each.
+using Primitives = WhittedPrimitives;
+
+inline std::shared_ptr<Primitives> single_mesh(TriangleMesh mesh) {
+  auto set = std::make_shared<Primitives>();
+  set->store_of<TriangleKind>().add_mesh(std::move(mesh), 0, 0);
+  return set;
+}
+
+inline std::shared_ptr<Primitives> sphere_mesh(double triangles) {
   const int segments = std::max(8, int(std::lround(std::sqrt(triangles))));
-  auto set = std::make_shared<PrimitiveSet>();
-  set->meshes.push_back({make_uv_sphere(std::max(3, segments / 2), segments, 0.2f, 17), 0, 0});
-  return set;
+  return single_mesh(make_uv_sphere(std::max(3, segments / 2), segments, 0.2f, 17));
 }
 
-inline std::shared_ptr<PrimitiveSet> single_mesh(TriangleMesh mesh) {
-  auto set = std::make_shared<PrimitiveSet>();
-  set->meshes.push_back({std::move(mesh), 0, 0});
-  return set;
-}
+inline const TriangleMesh& the_mesh(const Primitives& set) { return set.store_of<TriangleKind>().meshes[0].geometry; }
 
-inline Aabb mesh_bounds(const PrimitiveSet& set) {
+inline Aabb mesh_bounds(const Primitives& set) {
   Aabb box;
-  for (const MeshEntry& m : set.meshes)
-    for (const Vec3& p : m.mesh.positions) box.expand(p);
+  for (const Vec3& p : the_mesh(set).positions) box.expand(p);
   return box;
 }
 
 // Incoherent: from random points on a sphere around the mesh to random points in its box.
-inline std::vector<Ray> incoherent_rays(const PrimitiveSet& set, int count, std::uint64_t seed = 1) {
+inline std::vector<Ray> incoherent_rays(const Primitives& set, int count, std::uint64_t seed = 1) {
   const Aabb box = mesh_bounds(set);
   const float radius = glm::length(box.extent());
   Rng rng(seed, 0, 0);
@@ -53,7 +56,7 @@ inline std::vector<Ray> incoherent_rays(const PrimitiveSet& set, int count, std:
 }
 
 // Coherent: the rays of a side x side pinhole camera looking at the mesh, row by row.
-inline std::vector<Ray> coherent_rays(const PrimitiveSet& set, int side) {
+inline std::vector<Ray> coherent_rays(const Primitives& set, int side) {
   const Aabb box = mesh_bounds(set);
   const Vec3 eye = box.centroid() + Vec3(0.3f, 0.4f, -1.0f) * glm::length(box.extent());
   const Vec3 forward = glm::normalize(box.centroid() - eye), right = glm::normalize(glm::cross(forward, Vec3(0, 1, 0)));

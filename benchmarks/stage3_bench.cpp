@@ -14,8 +14,8 @@ namespace rt::bench {
 namespace {
 
 // Mesh id: 2..6 = 10^id triangles, 0 = the bunny. Built once and shared by every benchmark.
-std::shared_ptr<PrimitiveSet> mesh(int id) {
-  static std::map<int, std::shared_ptr<PrimitiveSet>> cache;
+std::shared_ptr<Primitives> mesh(int id) {
+  static std::map<int, std::shared_ptr<Primitives>> cache;
   static std::mutex lock;
   const std::lock_guard<std::mutex> guard(lock);
   auto& set = cache[id];
@@ -40,11 +40,11 @@ const Aggregate& aggregate(const std::string& accel, int id) {
   auto& a = cache[{accel, id}];
   if (!a) {
     if (accel == "naive") {
-      a = std::make_unique<NaiveAggregate>(mesh(id));
+      a = std::make_unique<NaiveAggregate<Primitives>>(mesh(id));
     } else {
       BvhBuildOptions o;
       o.split = split_method_from_name(accel);
-      a = std::make_unique<BvhAggregate>(mesh(id), o);
+      a = std::make_unique<BvhAggregate<Primitives>>(mesh(id), o);
     }
   }
   return *a;
@@ -62,7 +62,7 @@ void trace(benchmark::State& state, const std::string& accel, bool coherent) {
     ++i;
   }
   state.SetItemsProcessed(state.iterations());
-  state.counters["triangles"] = double(mesh(id)->triangle_count());
+  state.counters["triangles"] = double(mesh(id)->size());
   state.counters["ns_per_ray"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["hit_fraction"] = double(hits) / double(state.iterations());
 }
@@ -86,8 +86,8 @@ void register_all() {
       const auto set = mesh(int(s.range(0)));
       BvhBuildOptions o;
       o.split = split_method_from_name(method);
-      for (auto _ : s) benchmark::DoNotOptimize(BvhAggregate(set, o));
-      s.counters["triangles"] = double(set->triangle_count());
+      for (auto _ : s) benchmark::DoNotOptimize(BvhAggregate<Primitives>(set, o));
+      s.counters["triangles"] = double(set->size());
     });
     for (const int id : {2, 3, 4, 5, 6, 0}) b->Arg(id);
     b->Unit(benchmark::kMillisecond);
@@ -103,7 +103,7 @@ void register_all() {
       {
         const std::lock_guard<std::mutex> guard(lock);
         auto& e = cache[id];
-        if (!e) e = std::make_unique<EmbreeMesh>(mesh(id)->meshes[0].mesh);
+        if (!e) e = std::make_unique<EmbreeMesh>(the_mesh(*mesh(id)));
         embree = e.get();
       }
       const std::vector<Ray>& r = rays(id, coherent);

@@ -32,4 +32,18 @@ struct Hit {
   }
 };
 
+// The one place a hit record is filled: every shape of every stage reports its hit through here.
+// `point_error` bounds the rounding error of `point` per coordinate (zero: unknown, stage 1).
+inline Hit make_hit(const Ray& ray, float t, Vec3 point, Vec3 point_error, Vec3 outward_normal, int material,
+                    int shape) {
+  Hit hit;
+  hit.t = t;
+  hit.point = point;
+  hit.point_error = point_error;
+  hit.set_face_normal(ray, outward_normal);
+  hit.material = material;
+  hit.primitive = shape;
+  return hit;
+}
+
 }  // namespace rt

@@ -119,6 +119,15 @@ struct Disk {
 
 using Geometry = std::variant<Sphere, Plane, Torus, Triangle, Quad, Mesh, Disk>;
 
+// One shape of a scene as a renderer stores it: its geometry (in the form the renderer tests it),
+// its material and its place in the scene file (for messages, debug views and the emitters).
+template <class G>
+struct Placed {
+  G geometry;
+  int material = 0;  // index into SceneDescription::materials
+  int shape = -1;    // index into SceneDescription::shapes
+};
+
 struct Shape {
   std::string name;  // optional, for messages
   Geometry geometry;

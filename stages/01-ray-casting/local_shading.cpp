@@ -1,5 +1,6 @@
 #include "01-ray-casting/local_shading.h"
 
+#include "common/emission.h"
 #include "common/task.h"
 
 #include <cmath>
@@ -24,7 +25,7 @@ Color blinn_phong_brdf(const Material& material, Color albedo, Vec3 n, Vec3 wi, 
 
 Color shade_local(const RayCastingScene& scene, const Hit& hit, Vec3 to_viewer) {
   const Material& material = scene.materials()[size_t(hit.material)];
-  Color radiance = hit.front_face ? material.emission : Color(0.0f);
+  Color radiance = front_side_emission(material, hit);
   // BEGIN TASK stage1.shading.local
   const Color albedo = material.albedo_at(hit.point);
   const Vec3 shadow_origin = hit.point + kShadowRayOffset * hit.normal;

@@ -35,26 +35,21 @@ RayCastingScene::RayCastingScene(const SceneDescription& description)
 std::optional<Hit> RayCastingScene::closest_hit(const Ray& ray, Interval range) const {
   // BEGIN TASK stage1.scene.closest_hit
   std::optional<Hit> closest;
-  auto record = [&](float t, Vec3 outward_normal, int material, int index) {
-    Hit hit;
-    hit.t = t;
-    hit.point = ray.at(t);
-    hit.set_face_normal(ray, outward_normal);
-    hit.material = material;
-    hit.primitive = index;
-    closest = hit;
+  // The hit record (common/hit.h) of the nearest hit so far; later shapes count only when nearer.
+  auto record = [&](float t, Vec3 outward_normal, int material, int shape) {
+    closest = make_hit(ray, t, ray.at(t), Vec3(0.0f), outward_normal, material, shape);
     range.max = t;
   };
   for (const auto& s : spheres_)
     if (const auto t = intersect_sphere_stable(ray, s.geometry, range))
-      record(*t, sphere_normal(s.geometry, ray.at(*t)), s.material, s.index);
+      record(*t, sphere_normal(s.geometry, ray.at(*t)), s.material, s.shape);
   for (const auto& p : planes_)
     if (const auto t = intersect_plane(ray, p.geometry, range))
-      record(*t, p.geometry.normal, p.material, p.index);
+      record(*t, p.geometry.normal, p.material, p.shape);
   for (const auto& torus : tori_)
     if (const auto hit = intersect_implicit(torus.geometry, ray, range))
       record(hit->t, glm::normalize(torus.geometry.gradient(ray.at(hit->t))), torus.material,
-             torus.index);
+             torus.shape);
   return closest;
   // PLACEHOLDER
   // report_unfinished_task("stage1.scene.closest_hit");

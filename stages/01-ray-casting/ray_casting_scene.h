@@ -31,16 +31,9 @@ class RayCastingScene {
   Color background() const { return background_; }
 
  private:
-  template <class Geometry>
-  struct Entry {
-    Geometry geometry;
-    int material;
-    int index;  // position in the scene file's shape list
-  };
-
-  std::vector<Entry<Sphere>> spheres_;
-  std::vector<Entry<Plane>> planes_;
-  std::vector<Entry<TorusSurface>> tori_;
+  std::vector<Placed<Sphere>> spheres_;
+  std::vector<Placed<Plane>> planes_;
+  std::vector<Placed<TorusSurface>> tori_;
   std::vector<Material> materials_;
   std::vector<PointLight> lights_;
   Color background_;

@@ -1,46 +1,16 @@
-// Stage 2: the bounded primitives of a scene (spheres and the triangles of every mesh) and the
-// interface of whatever finds a ray's hits among them. Stage 2 tests them one by one
-// (LinearAggregate); stage 3 builds bounding volume hierarchies behind the same interface, and the
-// scene and the Whitted integrator do not change.
+// Stage 2: the interface of whatever finds a ray's hits among a scene's bounded primitives, and
+// stage 2's own: every primitive tested in turn (LinearAggregate). Stage 3 builds bounding volume
+// hierarchies behind the same interface, and the scene and the integrators do not change.
 #pragma once
 
-#include "02-whitted/triangle_intersection.h"
-#include "common/interval.h"
-#include "common/scene.h"
-#include "common/triangle_mesh.h"
+#include "01-ray-casting/sphere_intersection.h"
+#include "02-whitted/primitives.h"
 
+#include <array>
 #include <functional>
 #include <memory>
-#include <optional>
-#include <vector>
 
 namespace rt {
-
-struct SphereEntry {
-  Sphere sphere;
-  int material, shape;  // shape: index in the scene file's shape list
-};
-
-struct MeshEntry {
-  TriangleMesh mesh;  // in world space
-  int material, shape;
-};
-
-struct PrimitiveSet {
-  std::vector<SphereEntry> spheres;
-  std::vector<MeshEntry> meshes;
-  TriangleMethod triangle_method = TriangleMethod::watertight;
-
-  size_t triangle_count() const;
-};
-
-// Which primitive a ray hit first, and where on it.
-struct PrimitiveHit {
-  float t;
-  int sphere = -1;              // index into PrimitiveSet::spheres, or -1 for a triangle
-  int mesh = -1, triangle = -1; // the triangle, when sphere == -1
-  float b1 = 0.0f, b2 = 0.0f;   // its barycentrics
-};
 
 class Aggregate {
  public:
@@ -52,26 +22,85 @@ class Aggregate {
 };
 
 // Builds an aggregate over a primitive set; the aggregate may keep the shared pointer.
-using AggregateFactory = std::function<std::unique_ptr<Aggregate>(std::shared_ptr<const PrimitiveSet>)>;
+template <class Set>
+using AggregateFactory = std::function<std::unique_ptr<Aggregate>(std::shared_ptr<const Set>)>;
 
-// Stage 2's aggregate: every sphere, and every triangle of each mesh whose bounding sphere the ray
-// meets (meshes of fewer than 8 triangles are tested without one: the sphere would cost as much as
-// the triangles it saves).
+// Stage 2's aggregate: every primitive of every kind, in the set's order, except that a run of at
+// least 8 (a mesh, TriangleKind::runs) is tested only when the ray meets a sphere around it: below
+// that the sphere test costs as much as the triangles it saves.
+template <class Set>
 class LinearAggregate : public Aggregate {
  public:
-  explicit LinearAggregate(std::shared_ptr<const PrimitiveSet> primitives);
-  std::optional<PrimitiveHit> closest_hit(const Ray& ray, Interval range) const override;
-  bool occluded(const Ray& ray, Interval range) const override;
+  explicit LinearAggregate(std::shared_ptr<const Set> primitives);
+  std::optional<PrimitiveHit> closest_hit(const Ray& ray, Interval range) const override {
+    return search(ray, range, false);
+  }
+  bool occluded(const Ray& ray, Interval range) const override { return search(ray, range, true).has_value(); }
 
  private:
-  bool misses_bound(size_t mesh, const Ray& ray, Interval range) const;
+  static constexpr std::uint32_t kBoundedRunMinPrimitives = 8;
+  struct BoundedRun {
+    PrimitiveRun run;
+    std::optional<Sphere> bound;
+  };
+
   // Both queries in one loop: the nearest hit, or with `any_hit` the first one found.
   std::optional<PrimitiveHit> search(const Ray& ray, Interval range, bool any_hit) const;
 
-  std::shared_ptr<const PrimitiveSet> primitives_;
-  std::vector<std::optional<Sphere>> bounds_;  // per mesh
+  std::shared_ptr<const Set> primitives_;
+  std::array<std::vector<BoundedRun>, Set::kKinds> runs_;  // per kind
 };
 
-std::unique_ptr<Aggregate> make_linear_aggregate(std::shared_ptr<const PrimitiveSet> primitives);
+template <class Set>
+std::unique_ptr<Aggregate> make_linear_aggregate(std::shared_ptr<const Set> primitives) {
+  return std::make_unique<LinearAggregate<Set>>(std::move(primitives));
+}
+
+// A sphere around a run's boxes, padded by a relative 1e-4 so that rounding in the sphere test can
+// never reject a ray that hits a primitive inside.
+Sphere bounding_sphere(const std::vector<Aabb>& boxes);
+
+template <class Set>
+LinearAggregate<Set>::LinearAggregate(std::shared_ptr<const Set> primitives) : primitives_(std::move(primitives)) {
+  Set::for_each_kind([&](auto k) {
+    using Kind = typename Set::template Kind<k>;
+    const auto& store = primitives_->template store<k>();
+    for (const PrimitiveRun& run : Kind::runs(store)) {
+      std::optional<Sphere> bound;
+      if (run.last - run.first >= kBoundedRunMinPrimitives) {
+        std::vector<Aabb> boxes;
+        for (std::uint32_t i = run.first; i < run.last; ++i) boxes.push_back(Kind::bounds(Kind::hot(store, i)));
+        bound = bounding_sphere(boxes);
+      }
+      runs_[k].push_back({run, bound});
+    }
+  });
+}
+
+template <class Set>
+std::optional<PrimitiveHit> LinearAggregate<Set>::search(const Ray& ray, Interval range, bool any_hit) const {
+  std::optional<PrimitiveHit> found;
+  const TriangleRay prepared(ray);
+  Set::for_each_kind([&](auto k) {
+    using Kind = typename Set::template Kind<k>;
+    const auto& store = primitives_->template store<k>();
+    for (const BoundedRun& r : runs_[k]) {
+      if (any_hit && found) return;
+      if (r.bound) {
+        const std::optional<Interval> span = sphere_span(ray, *r.bound);
+        if (!span || span->max <= range.min || span->min >= range.max) continue;
+      }
+      for (std::uint32_t i = r.run.first; i < r.run.last; ++i)
+        if (std::optional<PrimitiveHit> hit = Kind::intersect(store, Kind::hot(store, i), prepared, range)) {
+          hit->kind = std::uint8_t(k);
+          hit->index = i;
+          found = hit;
+          if (any_hit) return;
+          range.max = hit->t;
+        }
+    }
+  });
+  return found;
+}
 
 }  // namespace rt

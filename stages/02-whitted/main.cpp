@@ -40,7 +40,6 @@ int main(int argc, char** argv) {
       [&] {
         const DebugView view = debug_view_from_name(debug_name);
         const SceneDescription description = load_scene(options.scene);
-        require_whitted_materials(description);
         const RenderSettings settings = options.settings_for(description);
         whitted.max_depth = settings.max_depth;
         const WhittedScene scene(description, triangle_method);

@@ -1,7 +1,7 @@
 #include "02-whitted/whitted.h"
 
 #include "01-ray-casting/local_shading.h"
-#include "common/error.h"
+#include "common/emission.h"
 #include "common/task.h"
 
 namespace rt {
@@ -87,20 +87,12 @@ Color trace_dielectric(const WhittedScene& scene, const Ray& ray, const Hit& hit
 
 }  // namespace
 
-void require_whitted_materials(const SceneDescription& description) {
-  for (const Material& material : description.materials)
-    if (material.type == MaterialType::phong || material.type == MaterialType::microfacet)
-      throw InputError(description.source + ": /materials/" + material.name +
-                       ": stage 2 renders diffuse, mirror and dielectric materials (phong and "
-                       "microfacet come with stage 4)");
-}
-
 Color whitted_radiance(const WhittedScene& scene, const Ray& ray, const WhittedOptions& options, int depth,
                        float weight) {
   const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
   if (!hit) return scene.background();
   const Material& material = scene.materials()[size_t(hit->material)];
-  const Color emitted = hit->front_face ? material.emission : Color(0.0f);
+  const Color emitted = front_side_emission(material, *hit);
   switch (material.type) {
     case MaterialType::diffuse:
       return emitted + shade_direct(scene, *hit, -ray.direction, options.offset);
@@ -112,7 +104,7 @@ Color whitted_radiance(const WhittedScene& scene, const Ray& ray, const WhittedO
       return emitted + trace_dielectric(scene, ray, *hit, material, options, depth, weight);
     case MaterialType::phong:
     case MaterialType::microfacet:
-      break;  // refused by require_whitted_materials
+      break;  // refused by WhittedScene's constructor
   }
   return emitted;
 }

@@ -33,10 +33,6 @@ struct WhittedOptions {
 // f_r I cos(theta) / r^2 with stage 1's Blinn-Phong BRDF, using the shading normal.
 Color shade_direct(const WhittedScene& scene, const Hit& hit, Vec3 wo, const OffsetPolicy& offset);
 
-// Throws InputError naming the scene file and the material for the glossy material types, which
-// need stage 4's BRDFs and Monte Carlo integration; stage 2 renders diffuse, mirror and dielectric.
-void require_whitted_materials(const SceneDescription& description);
-
 // The radiance arriving along `ray`, after `depth` specular bounces so far, on a branch of the
 // ray tree with the given `weight`.
 // Task stage2.whitted.mirror and task stage2.whitted.dielectric are its two recursive cases.

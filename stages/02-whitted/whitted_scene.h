@@ -1,52 +1,28 @@
-// Stage 2: the scene as stage 2 renders it: planes, plus spheres and triangle meshes held by an
-// Aggregate (a scene file's triangles, quads and OBJ meshes all become meshes). The two queries of
-// stage 1 (closest hit, occlusion) now also report where the hit point is to within its rounding
-// error.
+// Stage 2: the scene as stages 2 and 3 render it: spheres and triangles (a scene file's triangles,
+// quads and OBJ meshes) held by an Aggregate, planes beside it, and materials that are diffuse,
+// mirrors or glass.
 #pragma once
 
-#include "02-whitted/aggregate.h"
-#include "common/hit.h"
+#include "02-whitted/sphere_kind.h"
+#include "02-whitted/surface_scene.h"
+#include "02-whitted/triangle_kind.h"
 
 namespace rt {
 
-class WhittedScene {
+// The registration point of stages 2 and 3: the kinds of bounded primitive they render, in the
+// order every aggregate lists them.
+using WhittedPrimitives = PrimitiveSet<SphereKind, TriangleKind>;
+
+class WhittedScene : public SurfaceScene<WhittedPrimitives> {
  public:
-  // Throws InputError naming the scene file and the shape for a torus (implicit surfaces are
-  // stage 1's exercise; from stage 2 on, shapes are spheres, planes and triangles).
-  // `make_aggregate` decides how the bounded primitives are searched: stage 2 tests them one by
-  // one, stage 3 passes a BVH builder.
+  // Throws InputError naming the scene file and the material or shape for what stage 2 cannot
+  // render: phong and microfacet materials (stage 4's energy-conserving BRDFs), tori (stage 1's
+  // implicit surfaces) and disks (stage 4's emitters). `make_aggregate` decides how the bounded
+  // primitives are searched: stage 2 tests them one by one, stage 3 passes a BVH builder.
   explicit WhittedScene(const SceneDescription& description,
                         TriangleMethod triangle_method = TriangleMethod::watertight,
-                        const AggregateFactory& make_aggregate = make_linear_aggregate);
-
-  // The nearest hit with t strictly inside `range`. The hit's point is computed on the surface
-  // (barycentrics for triangles, projection for spheres and planes) with its error bound.
-  std::optional<Hit> closest_hit(const Ray& ray, Interval range) const;
-  // Whether anything is hit with t strictly inside `range`; stops at the first.
-  bool occluded(const Ray& ray, Interval range) const;
-
-  const std::vector<Material>& materials() const { return materials_; }
-  const std::vector<PointLight>& lights() const { return lights_; }
-  Color background() const { return background_; }
-  size_t triangle_count() const { return primitives_->triangle_count(); }
-  const PrimitiveSet& primitives() const { return *primitives_; }
-  const Aggregate& aggregate() const { return *aggregate_; }
-
- private:
-  struct PlaneEntry {
-    Plane plane;
-    int material, shape;
-  };
-
-  Hit triangle_hit_record(const PrimitiveHit& found, const Ray& ray) const;
-  Hit sphere_hit_record(const PrimitiveHit& found, const Ray& ray) const;
-
-  std::shared_ptr<PrimitiveSet> primitives_;
-  std::unique_ptr<Aggregate> aggregate_;
-  std::vector<PlaneEntry> planes_;  // unbounded: tested outside the aggregate
-  std::vector<Material> materials_;
-  std::vector<PointLight> lights_;
-  Color background_;
+                        const AggregateFactory<WhittedPrimitives>& make_aggregate =
+                            make_linear_aggregate<WhittedPrimitives>);
 };
 
 }  // namespace rt

@@ -1,45 +1,14 @@
-// Stage 3: axis-aligned bounding boxes and the lecture's slab test.
+// Stage 3: the lecture's slab test, a ray against an axis-aligned bounding box (common/aabb.h).
 #pragma once
 
+#include "common/aabb.h"
 #include "common/interval.h"
 #include "common/task.h"
 #include "common/ray.h"
 
-#include <glm/vector_relational.hpp>
-
 #include <optional>
 
 namespace rt {
-
-struct Aabb {
-  Vec3 lo{kInfinity};  // the default box is empty: lo > hi
-  Vec3 hi{-kInfinity};
-
-  void expand(Vec3 p) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  void expand(const Aabb& b) {
-    lo = glm::min(lo, b.lo);
-    hi = glm::max(hi, b.hi);
-  }
-  bool is_empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
-  Vec3 extent() const { return hi - lo; }
-  Vec3 centroid() const { return 0.5f * (lo + hi); }
-  bool contains(const Aabb& b) const {
-    return b.is_empty() || (glm::all(glm::lessThanEqual(lo, b.lo)) && glm::all(glm::lessThanEqual(b.hi, hi)));
-  }
-  // Half the surface area is all the SAH needs (it compares ratios); 0 for an empty box.
-  float half_area() const {
-    if (is_empty()) return 0.0f;
-    const Vec3 e = extent();
-    return e.x * e.y + e.y * e.z + e.z * e.x;
-  }
-  int longest_axis() const {
-    const Vec3 e = extent();
-    return e.x >= e.y ? (e.x >= e.z ? 0 : 2) : (e.y >= e.z ? 1 : 2);
-  }
-};
 
 // What the slab test needs of a ray, computed once per ray: 1/d per axis. A zero component gives
 // +-infinity (IEEE 754), which is exactly right: that slab either contains the origin for every t

@@ -1,64 +1,176 @@
 // Stage 3: the two aggregates stage 3 compares, behind stage 2's Aggregate interface: the naive one
 // (every primitive against every ray: the correctness oracle and the baseline) and the BVH, over
-// spheres and triangles together.
+// every kind of primitive of a set together.
 #pragma once
 
 #include "02-whitted/aggregate.h"
 #include "03-acceleration/bvh.h"
 #include "03-acceleration/wide_bvh.h"
 
-#include <array>
-
 namespace rt {
 
-// The primitives as one list: spheres first, then every mesh's triangles, each triangle's three
-// corners copied out. `reorder` puts the list in a BVH's leaf order, so that the triangles of a
-// leaf sit next to each other in memory.
-struct FlatPrimitives {
-  std::shared_ptr<const PrimitiveSet> set;
-  std::vector<std::uint32_t> primitive;      // per entry: spheres 0..S-1, then triangles S, S+1, ...
-  std::vector<std::array<Vec3, 3>> corners;  // per entry (unused for spheres)
-  std::vector<std::uint32_t> triangle_mesh;  // per triangle (index primitive - S): its mesh ...
-  std::vector<std::uint32_t> triangle_index; // ... and its index there
-
-  explicit FlatPrimitives(std::shared_ptr<const PrimitiveSet> primitives);
-  size_t size() const { return primitive.size(); }
-  Aabb bounds(size_t entry) const;
+// The primitives of every kind as one list of slots, each holding what its kind's test reads (its
+// hot data: a triangle's corners, a sphere) and which primitive it is. `reorder` puts the slots in
+// a BVH's leaf order, so that the primitives of a leaf sit next to each other in memory. A slot's
+// test is a direct call of its kind's (visit_kind), not a virtual one.
+template <class Set>
+class FlatPrimitives {
+ public:
+  explicit FlatPrimitives(std::shared_ptr<const Set> set);
+  size_t size() const { return hot_.size(); }
+  Aabb bounds(size_t slot) const {
+    return visit_kind<Set::kKinds>(hot_[slot].index(),
+                                   [&](auto k) { return Set::template Kind<k>::bounds(*std::get_if<k>(&hot_[slot])); });
+  }
   void reorder(const std::vector<std::uint32_t>& order);
-  // The hit distance of entry `i` within `range`; `triangle_hit` receives the barycentrics.
-  std::optional<float> hit(size_t i, const TriangleRay& ray, Interval range, TriangleHit* triangle_hit = nullptr) const;
-  PrimitiveHit record(size_t i, float t, const TriangleHit& triangle_hit) const;
+  // The hit of the primitive in `slot` with t strictly inside `range`.
+  std::optional<PrimitiveHit> intersect(size_t slot, const TriangleRay& ray, Interval range) const {
+    const typename Set::AnyHot& hot = hot_[slot];
+    return visit_kind<Set::kKinds>(hot.index(), [&](auto k) {
+      std::optional<PrimitiveHit> hit =
+          Set::template Kind<k>::intersect(set_->template store<k>(), *std::get_if<k>(&hot), ray, range);
+      if (hit) {
+        hit->kind = std::uint8_t(k);
+        hit->index = index_[slot];
+      }
+      return hit;
+    });
+  }
+  size_t bytes() const { return size() * (sizeof(hot_[0]) + sizeof(index_[0])); }
+
+ private:
+  std::shared_ptr<const Set> set_;
+  std::vector<typename Set::AnyHot> hot_;  // per slot
+  std::vector<std::uint32_t> index_;       // per slot: the primitive's index within its kind
 };
 
+template <class Set>
 class NaiveAggregate : public Aggregate {
  public:
-  explicit NaiveAggregate(std::shared_ptr<const PrimitiveSet> primitives) : flat_(std::move(primitives)) {}
+  explicit NaiveAggregate(std::shared_ptr<const Set> primitives) : flat_(std::move(primitives)) {}
   std::optional<PrimitiveHit> closest_hit(const Ray& ray, Interval range) const override;
   bool occluded(const Ray& ray, Interval range) const override;
 
  private:
-  FlatPrimitives flat_;
+  FlatPrimitives<Set> flat_;
 };
+template <class Set>
+NaiveAggregate(std::shared_ptr<Set>) -> NaiveAggregate<std::remove_const_t<Set>>;
 
+template <class Set>
 class BvhAggregate : public Aggregate {
  public:
-  BvhAggregate(std::shared_ptr<const PrimitiveSet> primitives, const BvhBuildOptions& options);
+  BvhAggregate(std::shared_ptr<const Set> primitives, const BvhBuildOptions& options);
   std::optional<PrimitiveHit> closest_hit(const Ray& ray, Interval range) const override;
   bool occluded(const Ray& ray, Interval range) const override;
 
   const Bvh& bvh() const { return bvh_; }
   const std::optional<WideBvh>& wide_bvh() const { return wide_; }
-  // Memory of the acceleration structure: nodes, leaf order and the copied corners.
-  size_t bytes() const;
+  // Memory of the acceleration structure: nodes, leaf order and the slots' copied primitives.
+  size_t bytes() const {
+    return bvh_.nodes.size() * sizeof(BvhNode) + (wide_ ? wide_->nodes.size() * sizeof(WideBvhNode) : 0) +
+           bvh_.order.size() * sizeof(std::uint32_t) + flat_.bytes();
+  }
 
  private:
-  FlatPrimitives flat_;
+  FlatPrimitives<Set> flat_;
   Bvh bvh_;
   std::optional<WideBvh> wide_;  // when built with BvhBuildOptions::wide
 };
+template <class Set>
+BvhAggregate(std::shared_ptr<Set>, const BvhBuildOptions&) -> BvhAggregate<std::remove_const_t<Set>>;
 
-// For WhittedScene: `--accel naive|median|middle|sah`.
-AggregateFactory naive_aggregate_factory();
-AggregateFactory bvh_aggregate_factory(const BvhBuildOptions& options);
+// For the scenes: `--accel naive|median|middle|sah`.
+template <class Set>
+AggregateFactory<Set> naive_aggregate_factory() {
+  return [](std::shared_ptr<const Set> p) { return std::make_unique<NaiveAggregate<Set>>(std::move(p)); };
+}
+template <class Set>
+AggregateFactory<Set> bvh_aggregate_factory(const BvhBuildOptions& options) {
+  return [options](std::shared_ptr<const Set> p) { return std::make_unique<BvhAggregate<Set>>(std::move(p), options); };
+}
+
+template <class Set>
+FlatPrimitives<Set>::FlatPrimitives(std::shared_ptr<const Set> set) : set_(std::move(set)) {
+  hot_.reserve(set_->size());
+  index_.reserve(set_->size());
+  Set::for_each_kind([&](auto k) {
+    using Kind = typename Set::template Kind<k>;
+    const auto& store = set_->template store<k>();
+    for (size_t i = 0; i < Kind::size(store); ++i) {
+      hot_.emplace_back(std::in_place_index<k>, Kind::hot(store, i));
+      index_.push_back(std::uint32_t(i));
+    }
+  });
+}
+
+template <class Set>
+void FlatPrimitives<Set>::reorder(const std::vector<std::uint32_t>& order) {
+  std::vector<typename Set::AnyHot> hot;
+  std::vector<std::uint32_t> index;
+  hot.reserve(order.size());
+  index.reserve(order.size());
+  for (const std::uint32_t slot : order) {
+    hot.push_back(hot_[slot]);
+    index.push_back(index_[slot]);
+  }
+  hot_ = std::move(hot);
+  index_ = std::move(index);
+}
+
+template <class Set>
+std::optional<PrimitiveHit> NaiveAggregate<Set>::closest_hit(const Ray& ray, Interval range) const {
+  std::optional<PrimitiveHit> closest;
+  const TriangleRay prepared(ray);
+  for (size_t slot = 0; slot < flat_.size(); ++slot)
+    if (const std::optional<PrimitiveHit> hit = flat_.intersect(slot, prepared, range)) {
+      closest = hit;
+      range.max = hit->t;
+    }
+  return closest;
+}
+
+template <class Set>
+bool NaiveAggregate<Set>::occluded(const Ray& ray, Interval range) const {
+  const TriangleRay prepared(ray);
+  for (size_t slot = 0; slot < flat_.size(); ++slot)
+    if (flat_.intersect(slot, prepared, range)) return true;
+  return false;
+}
+
+template <class Set>
+BvhAggregate<Set>::BvhAggregate(std::shared_ptr<const Set> primitives, const BvhBuildOptions& options)
+    : flat_(std::move(primitives)) {
+  std::vector<Aabb> bounds;
+  bounds.reserve(flat_.size());
+  for (size_t slot = 0; slot < flat_.size(); ++slot) bounds.push_back(flat_.bounds(slot));
+  bvh_ = build_bvh(bounds, options);
+  flat_.reorder(bvh_.order);  // slot = leaf slot from here on
+  if (options.wide) wide_ = collapse_to_wide(bvh_);
+}
+
+template <class Set>
+std::optional<PrimitiveHit> BvhAggregate<Set>::closest_hit(const Ray& ray, Interval range) const {
+  // The traversal reports hits nearer and nearer, so the last one reported is the nearest.
+  std::optional<PrimitiveHit> nearest;
+  const TriangleRay prepared(ray);
+  auto hit_primitive = [&](std::uint32_t slot, Interval r) -> std::optional<float> {
+    const std::optional<PrimitiveHit> hit = flat_.intersect(slot, prepared, r);
+    if (!hit) return std::nullopt;
+    nearest = hit;
+    return hit->t;
+  };
+  const auto found = wide_ ? wide_bvh_closest_hit(*wide_, ray, range, hit_primitive)
+                           : bvh_closest_hit(bvh_, ray, range, hit_primitive);
+  if (!found) return std::nullopt;
+  return nearest;
+}
+
+template <class Set>
+bool BvhAggregate<Set>::occluded(const Ray& ray, Interval range) const {
+  const TriangleRay prepared(ray);
+  auto hits_primitive = [&](std::uint32_t slot, Interval r) { return flat_.intersect(slot, prepared, r).has_value(); };
+  return wide_ ? wide_bvh_any_hit(*wide_, ray, range, hits_primitive) : bvh_any_hit(bvh_, ray, range, hits_primitive);
+}
 
 }  // namespace rt

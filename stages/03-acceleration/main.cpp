@@ -56,7 +56,6 @@ int main(int argc, char** argv) {
       [&] {
         const DebugView view = debug_view_from_name(debug_name);
         const SceneDescription description = load_scene(options.scene);
-        require_whitted_materials(description);
         const RenderSettings settings = options.settings_for(description);
         BvhBuildOptions build;
         build.max_leaf_size = leaf_size;
@@ -66,8 +65,9 @@ int main(int argc, char** argv) {
 
         const auto build_start = std::chrono::steady_clock::now();
         const CountingAggregate* counter = nullptr;
-        const WhittedScene scene(description, TriangleMethod::watertight, [&](std::shared_ptr<const PrimitiveSet> p) {
-          auto inner = naive ? naive_aggregate_factory()(std::move(p)) : bvh_aggregate_factory(build)(std::move(p));
+        const WhittedScene scene(description, TriangleMethod::watertight, [&](std::shared_ptr<const WhittedPrimitives> p) {
+          auto inner = naive ? naive_aggregate_factory<WhittedPrimitives>()(std::move(p))
+                             : bvh_aggregate_factory<WhittedPrimitives>(build)(std::move(p));
           auto counting = std::make_unique<CountingAggregate>(std::move(inner));
           counter = counting.get();
           return counting;
@@ -75,13 +75,16 @@ int main(int argc, char** argv) {
         const double build_seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
-        const size_t triangles = scene.triangle_count(), spheres = scene.primitives().spheres.size();
+        const size_t triangles = scene.triangle_count();
+        const size_t spheres = SphereKind::size(scene.primitives().store_of<SphereKind>());
         std::printf("stage3: %zu triangles, %zu spheres; accelerator %s", triangles, spheres, accel_name.c_str());
-        if (const auto* bvh = dynamic_cast<const BvhAggregate*>(&counter->inner())) {
+        if (const auto* bvh = dynamic_cast<const BvhAggregate<WhittedPrimitives>*>(&counter->inner())) {
           const BvhStats s = bvh->bvh().stats();
-          size_t mesh_bytes = 0;
-          for (const MeshEntry& m : scene.primitives().meshes)
-            mesh_bytes += m.mesh.positions.size() * sizeof(Vec3) + m.mesh.triangles.size() * sizeof(m.mesh.triangles[0]);
+          const TriangleKind::Store& store = scene.primitives().store_of<TriangleKind>();
+          size_t mesh_bytes = store.mesh_of.size() * sizeof(store.mesh_of[0]);
+          for (const Placed<TriangleMesh>& m : store.meshes)
+            mesh_bytes += m.geometry.positions.size() * sizeof(Vec3) +
+                          m.geometry.triangles.size() * sizeof(m.geometry.triangles[0]);
           std::printf(" (leaf size %d%s), built in %.3f s\n", leaf_size, wide ? ", 4-wide" : "", build_seconds);
           std::printf("stage3: %zu nodes, %zu leaves, depth %zu, primitives per leaf %.2f mean / %zu max, SAH cost %.1f\n",
                       s.nodes, s.leaves, s.depth, s.mean_leaf_primitives, s.max_leaf_primitives, s.sah_cost);

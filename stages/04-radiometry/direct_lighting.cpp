@@ -25,7 +25,7 @@ namespace {
 Color direct_from_point_lights(const LightingScene& scene, const ShadingPoint& at, const OffsetPolicy& offset) {
   // BEGIN TASK stage4.direct.point_lights
   Color sum(0.0f);
-  for (const PointLight& light : scene.point_lights()) {
+  for (const PointLight& light : scene.lights()) {
     const Vec3 to_light = light.position - at.hit.point;
     const float distance = glm::length(to_light);
     if (!(distance > 0.0f)) continue;

@@ -2,6 +2,7 @@
 
 #include "04-radiometry/radiometry.h"
 #include "04-radiometry/warp.h"
+#include "common/emission.h"
 #include "common/frame.h"
 #include "common/task.h"
 
@@ -104,7 +105,7 @@ Vec3 AreaEmitter::normal_at(Vec3 y) const {
 }
 
 Color AreaEmitter::radiance_towards(Vec3 y, Vec3 x) const {
-  return glm::dot(normal_at(y), x - y) > 0.0f ? radiance : Color(0.0f);
+  return front_side_emission(radiance, glm::dot(normal_at(y), x - y) > 0.0f);
 }
 
 float AreaEmitter::power() const { return luminance(lambertian_emitter_flux(radiance, area())); }

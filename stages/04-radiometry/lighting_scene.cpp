@@ -1,7 +1,6 @@
 #include "04-radiometry/lighting_scene.h"
 
 #include "02-whitted/mesh_instance.h"
-#include "02-whitted/ray_offset.h"
 #include "03-acceleration/bvh_aggregate.h"
 #include "common/error.h"
 
@@ -12,48 +11,29 @@ namespace rt {
 
 namespace {
 
-SceneDescription without_disks(const SceneDescription& description, std::vector<int>& kept) {
-  SceneDescription copy = description;
-  copy.shapes.clear();
-  for (size_t i = 0; i < description.shapes.size(); ++i)
-    if (!std::holds_alternative<Disk>(description.shapes[i].geometry)) {
-      copy.shapes.push_back(description.shapes[i]);
-      kept.push_back(int(i));
-    }
-  return copy;
-}
-
-// A disk is its plane, cut at the radius: t = (c - o) . n / (d . n), then |p - c| <= r.
-std::optional<float> intersect_disk(const Ray& ray, const Disk& disk, Interval range) {
-  const float denom = glm::dot(ray.direction, disk.normal);
-  if (denom == 0.0f) return std::nullopt;
-  const float t = glm::dot(disk.center - ray.origin, disk.normal) / denom;
-  if (!range.surrounds(t)) return std::nullopt;
-  const Vec3 d = ray.at(t) - disk.center;
-  if (glm::dot(d, d) > disk.radius * disk.radius) return std::nullopt;
-  return t;
-}
-
-void check_materials(const SceneDescription& description) {
+// The materials are checked before the shapes, as they come first in a scene file.
+const SceneDescription& with_lighting_materials(const SceneDescription& description) {
   for (const Material& m : description.materials)
     if (m.type == MaterialType::diffuse && max_component(m.specular) > 0.0f)
       throw InputError(description.source + ": /materials/" + m.name +
                        ": stage 4 renders diffuse materials as Lambertian; stage 1's specular "
                        "highlight is not energy conserving (use type phong)");
+  return description;
 }
 
 }  // namespace
 
 LightingScene::LightingScene(const SceneDescription& description, const LightingOptions& options,
-                             const AggregateFactory& make_aggregate)
-    : geometry_((check_materials(description), without_disks(description, geometry_shape_)),
-                options.triangle_method,
-                make_aggregate ? make_aggregate : bvh_aggregate_factory(BvhBuildOptions{.wide = true})) {
+                             const AggregateFactory<LightingPrimitives>& make_aggregate)
+    : SurfaceScene(with_lighting_materials(description), options.triangle_method,
+                   make_aggregate ? make_aggregate
+                                  : bvh_aggregate_factory<LightingPrimitives>(BvhBuildOptions{.wide = true}),
+                   "stage 4 renders spheres, planes, triangles, quads, meshes and disks (tori are stage 1's "
+                   "implicit surfaces)") {
   first_emitter_.assign(description.shapes.size(), -1);
   for (size_t i = 0; i < description.shapes.size(); ++i) {
     const Shape& shape = description.shapes[i];
     const Color le = description.materials[size_t(shape.material)].emission;
-    if (const auto* disk = std::get_if<Disk>(&shape.geometry)) disks_.push_back({*disk, shape.material, int(i)});
     if (max_component(le) <= 0.0f) continue;
     first_emitter_[i] = int(emitters_.size());
     auto add = [&](auto geometry) { emitters_.push_back(AreaEmitter{geometry, le, int(i)}); };
@@ -81,34 +61,6 @@ LightingScene::LightingScene(const SceneDescription& description, const Lighting
                        "smaller");
   }
   emitter_distribution_ = DiscreteDistribution(power);
-}
-
-std::optional<Hit> LightingScene::closest_hit(const Ray& ray, Interval range) const {
-  std::optional<Hit> closest = geometry_.closest_hit(ray, range);
-  if (closest) {
-    closest->primitive = geometry_shape_[size_t(closest->primitive)];
-    range.max = closest->t;
-  }
-  for (const DiskEntry& d : disks_)
-    if (const auto t = intersect_disk(ray, d.disk, range)) {
-      const SurfacePoint surface = plane_point(ray.at(*t), Plane{d.disk.center, d.disk.normal});
-      Hit hit;
-      hit.t = *t;
-      hit.point = surface.point;
-      hit.point_error = surface.error;
-      hit.set_face_normal(ray, d.disk.normal);
-      hit.material = d.material;
-      hit.primitive = d.shape;
-      closest = hit;
-      range.max = *t;
-    }
-  return closest;
-}
-
-bool LightingScene::occluded(const Ray& ray, Interval range) const {
-  for (const DiskEntry& d : disks_)
-    if (intersect_disk(ray, d.disk, range)) return true;
-  return geometry_.occluded(ray, range);
 }
 
 int LightingScene::emitter_index(const Hit& hit) const {

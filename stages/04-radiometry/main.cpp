@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
         direct.max_depth = settings.max_depth;
         const LightingScene scene(description, lighting);
         std::printf("stage4: %zu area emitters, %zu point lights\n", scene.emitters().size(),
-                    scene.point_lights().size());
+                    scene.lights().size());
         const PinholeCamera camera(description.camera, settings.width, settings.height);
         render_and_write("stage4", options, description, settings, camera, PixelMeaning::radiance,
                          [&](const Ray& ray, Sampler& rng) { return direct_radiance(scene, ray, direct, rng); });

@@ -39,7 +39,7 @@ TEST(HiddenSlab, RandomBoxesAgreeWithDoubleClipping) {
 }
 
 // 3,000 random triangles of random sizes: long slivers and overlaps that no visible test uses.
-std::shared_ptr<PrimitiveSet> random_soup() {
+std::shared_ptr<Primitives> random_soup() {
   Rng rng(1234567, 0, 0);
   TriangleMesh mesh;
   for (int i = 0; i < 3000; ++i) {

@@ -139,7 +139,7 @@ std::vector<Aabb> triangle_bounds(const TriangleMesh& mesh) {
 
 TEST_P(Builders, TreesAreValidOnRealAndDegenerateInput) {
   std::vector<std::vector<Aabb>> inputs;
-  inputs.push_back(triangle_bounds(bunny()->meshes[0].mesh));
+  inputs.push_back(triangle_bounds(bunny()->store_of<TriangleKind>().meshes[0].geometry));
   inputs.push_back({});                                        // no primitives
   inputs.push_back({Aabb{Vec3(1), Vec3(2)}});                  // one
   inputs.push_back(std::vector<Aabb>(1000, Aabb{Vec3(1), Vec3(2)}));  // all centroids equal
@@ -174,7 +174,7 @@ TEST_P(Builders, DegenerateTrianglesNeitherHitNorBreakTheTree) {
     ASSERT_EQ(a.has_value(), b.has_value());
     if (a) {
       EXPECT_EQ(a->t, b->t);
-      EXPECT_LT(b->triangle, int(clean.triangles.size())) << "a degenerate triangle was hit";
+      EXPECT_LT(b->index, clean.triangles.size()) << "a degenerate triangle was hit";
     }
   }
 }
@@ -228,7 +228,7 @@ TEST(WideBvh, FourBoxTestMatchesTheSlabTestBoxByBox) {
 TEST(BvhLayout, SahBeatsTheOtherBuildersOnItsOwnCostModel) {
   // The SAH tree minimises the expected cost per ray greedily; on the bunny it must come out
   // cheaper than the median and middle trees by the same measure.
-  std::vector<Aabb> bounds = triangle_bounds(bunny()->meshes[0].mesh);
+  std::vector<Aabb> bounds = triangle_bounds(bunny()->store_of<TriangleKind>().meshes[0].geometry);
   auto cost = [&](SplitMethod split) {
     BvhBuildOptions o;
     o.split = split;

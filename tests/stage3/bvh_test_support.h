@@ -2,6 +2,7 @@
 // comparison of two aggregates.
 #pragma once
 
+#include "02-whitted/whitted_scene.h"
 #include "03-acceleration/bvh_aggregate.h"
 #include "common/obj_loader.h"
 #include "common/random.h"
@@ -37,39 +38,40 @@ inline const Builder kBuilders[] = {{"median", SplitMethod::median, 4}, {"middle
                              {"sah_leaf16", SplitMethod::sah, 16},    {"sah_wide", SplitMethod::sah, 4, true},
                              {"median_leaf1_wide", SplitMethod::median, 1, true}};
 
-inline std::shared_ptr<PrimitiveSet> primitives_of(std::vector<TriangleMesh> meshes, std::vector<Sphere> spheres = {}) {
-  auto set = std::make_shared<PrimitiveSet>();
-  for (TriangleMesh& mesh : meshes) set->meshes.push_back({std::move(mesh), 0, int(set->meshes.size())});
-  for (const Sphere& s : spheres) set->spheres.push_back({s, 0, int(set->spheres.size())});
+// The stage-3 tests search stage 2's kinds: spheres and triangles.
+using Primitives = WhittedPrimitives;
+
+inline std::shared_ptr<Primitives> primitives_of(std::vector<TriangleMesh> meshes, std::vector<Sphere> spheres = {}) {
+  auto set = std::make_shared<Primitives>();
+  int shape = 0;
+  for (TriangleMesh& mesh : meshes) set->store_of<TriangleKind>().add_mesh(std::move(mesh), 0, shape++);
+  for (const Sphere& s : spheres) set->store_of<SphereKind>().push_back({s, 0, shape++});
   return set;
 }
 
-inline const std::shared_ptr<PrimitiveSet>& bunny() {
+inline const std::shared_ptr<Primitives>& bunny() {
   static const auto set = primitives_of({load_obj(source_path("assets/meshes/stanford-bunny.obj"))});
   return set;
 }
 
 // A generated closed mesh (a jittered UV sphere, 1,012 triangles) plus spheres that overlap it.
-inline std::shared_ptr<PrimitiveSet> mix() {
+inline std::shared_ptr<Primitives> mix() {
   return primitives_of({make_uv_sphere(12, 44, 0.3f, 8)},
                        {Sphere{Vec3(1.1f, 0, 0), 0.4f}, Sphere{Vec3(0, 0, 0), 0.5f}, Sphere{Vec3(-1, 1, 0.5f), 0.2f},
                         Sphere{Vec3(0, -1.3f, 0), 0.3f}});
 }
 
-inline Aabb bounds_of(const PrimitiveSet& set) {
+inline Aabb bounds_of(const Primitives& set) {
   Aabb box;
-  for (const MeshEntry& m : set.meshes)
-    for (const Vec3& p : m.mesh.positions) box.expand(p);
-  for (const SphereEntry& s : set.spheres) {
-    box.expand(s.sphere.center - Vec3(s.sphere.radius));
-    box.expand(s.sphere.center + Vec3(s.sphere.radius));
-  }
+  for (const Placed<TriangleMesh>& m : set.store_of<TriangleKind>().meshes)
+    for (const Vec3& p : m.geometry.positions) box.expand(p);
+  for (const Placed<Sphere>& s : set.store_of<SphereKind>()) box.expand(SphereKind::bounds(s.geometry));
   return box;
 }
 
 // Rays from a sphere around the scene aimed into its box (most hit), from inside the box in any
 // direction, and some exactly axis-aligned (zero direction components).
-inline std::vector<Ray> random_rays(const PrimitiveSet& set, int count, std::uint64_t seed) {
+inline std::vector<Ray> random_rays(const Primitives& set, int count, std::uint64_t seed) {
   const Aabb box = bounds_of(set);
   const Vec3 centre = box.centroid();
   const float radius = glm::length(box.extent());
@@ -101,7 +103,7 @@ inline void expect_same_answers(const std::vector<std::optional<PrimitiveHit>>& 
     const auto& a = truth[i];
     const auto b = tested.closest_hit(rays[i], Interval::positive());
     hits += a ? 1 : 0;
-    const bool same_primitive = a && b && a->sphere == b->sphere && a->mesh == b->mesh && a->triangle == b->triangle;
+    const bool same_primitive = a && b && a->kind == b->kind && a->index == b->index;
     const bool same = a.has_value() == b.has_value() &&
                       (!a || (a->t == b->t && (!same_primitive || (a->b1 == b->b1 && a->b2 == b->b2))));
     if (!same) {
@@ -123,7 +125,8 @@ inline void expect_same_answers(const Aggregate& reference, const Aggregate& tes
 // still open only leaves holding a small share of the primitives, averaged over rays aimed at the
 // scene. An unfinished split (a tree not sorted by position) or an unfinished traversal (every
 // primitive tested) fails here at once, naming the tasks, instead of after minutes of brute force.
-inline ::testing::AssertionResult tree_culls(const BvhAggregate& bvh, const PrimitiveSet& set, double max_share = 0.3) {
+inline ::testing::AssertionResult tree_culls(const BvhAggregate<Primitives>& bvh, const Primitives& set,
+                                            double max_share = 0.3) {
   const size_t primitives = bvh.bvh().order.size();
   size_t tested = 0;
   auto count = [&](std::uint32_t, Interval) {
@@ -144,10 +147,10 @@ inline ::testing::AssertionResult tree_culls(const BvhAggregate& bvh, const Prim
 
 // Every builder's tree culls; then brute force once, and every builder against it: same hit or
 // miss, same t, same primitive.
-inline void expect_builders_agree_with_naive(const std::shared_ptr<PrimitiveSet>& set, const std::vector<Ray>& rays) {
-  std::vector<std::unique_ptr<BvhAggregate>> trees;
+inline void expect_builders_agree_with_naive(const std::shared_ptr<Primitives>& set, const std::vector<Ray>& rays) {
+  std::vector<std::unique_ptr<BvhAggregate<Primitives>>> trees;
   for (const Builder& b : kBuilders) {
-    trees.push_back(std::make_unique<BvhAggregate>(set, b.options()));
+    trees.push_back(std::make_unique<BvhAggregate<Primitives>>(set, b.options()));
     ASSERT_TRUE(tree_culls(*trees.back(), *set)) << b.name;
   }
   const NaiveAggregate naive(set);

@@ -1,0 +1,48 @@
+// Stage 2: triangles as a primitive kind (the contract: 02-whitted/primitives.h). A scene file's
+// triangles, quads and OBJ meshes all become world-space triangle meshes (02-whitted/mesh_instance.h);
+// the kind numbers their triangles one after another, mesh by mesh.
+#pragma once
+
+#include "02-whitted/primitives.h"
+
+#include <array>
+
+namespace rt {
+
+struct TriangleKind {
+  struct Store {
+    std::vector<Placed<TriangleMesh>> meshes;  // in world space
+    std::vector<std::uint32_t> first;          // per mesh: the kind's number of its first triangle
+    std::vector<std::uint32_t> mesh_of;        // per triangle: its mesh
+    TriangleMethod method = TriangleMethod::watertight;
+
+    void add_mesh(TriangleMesh mesh, int material, int shape);
+  };
+  using Hot = std::array<Vec3, 3>;  // the corners, copied out of the mesh
+
+  static bool add(Store& store, const Shape& shape, int index);
+  static size_t size(const Store& store) { return store.mesh_of.size(); }
+  static Hot hot(const Store& store, size_t i) {
+    const std::uint32_t m = store.mesh_of[i];
+    const TriangleMesh& mesh = store.meshes[m].geometry;
+    const auto& c = mesh.triangles[i - store.first[m]];
+    return {mesh.positions[c[0]], mesh.positions[c[1]], mesh.positions[c[2]]};
+  }
+  static Aabb bounds(const Hot& corners) {
+    Aabb box;
+    for (const Vec3& p : corners) box.expand(p);
+    return box;
+  }
+  static std::optional<PrimitiveHit> intersect(const Store& store, const Hot& v, const TriangleRay& ray,
+                                               Interval range) {
+    const std::optional<TriangleHit> hit = intersect_triangle(store.method, ray, v[0], v[1], v[2], range);
+    if (!hit) return std::nullopt;
+    return PrimitiveHit{hit->t, hit->b1, hit->b2};
+  }
+  // Task stage2.mesh.hit_record (triangle_kind.cpp).
+  static Hit hit_record(const Store& store, const PrimitiveHit& found, const Ray& ray);
+  // One run per mesh: stage 2 tests a mesh's triangles only when the ray meets its bounding sphere.
+  static std::vector<PrimitiveRun> runs(const Store& store);
+};
+
+}  // namespace rt
