@@ -1,4 +1,4 @@
-// The pinhole camera of DESIGN.md. The camera is given; turning a film point into a ray is the
+// The pinhole camera of docs/design.md. The camera is given; turning a film point into a ray is the
 // first task of stage 1 (stages/01-ray-casting/camera_rays.h), which reads the fields below.
 #pragma once
 
@@ -21,7 +21,7 @@ class PinholeCamera {
 
   Vec3 position;
   // forward = normalize(look_at - position), right = normalize(forward x up), up = right x forward.
-  // A camera looking down +z with up +y therefore has +x on its LEFT (DESIGN.md).
+  // A camera looking down +z with up +y therefore has +x on its LEFT (docs/design.md).
   Vec3 forward, right, up;
   float tan_half_vfov;  // half the film height at distance 1 from the pinhole
   float aspect;         // width / height

@@ -1,4 +1,4 @@
-// The command line every stage executable shares (DESIGN.md): --scene --spp --out --width --height
+// The command line every stage executable shares (docs/design.md): --scene --spp --out --width --height
 // --threads --seed, plus the stage's own flags. Exit codes: 0 ok, 1 bad input, 2 bad usage; every
 // failure is one line on stderr.
 #pragma once

@@ -1,4 +1,4 @@
-// The two ways a run can fail on purpose, each with its exit code (DESIGN.md, "Command line").
+// The two ways a run can fail on purpose, each with its exit code (docs/design.md, "Command line").
 #pragma once
 
 #include <stdexcept>

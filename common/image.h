@@ -1,4 +1,4 @@
-// A linear RGB float image. Pixel (x, y) has row y = 0 at the TOP (DESIGN.md).
+// A linear RGB float image. Pixel (x, y) has row y = 0 at the TOP (docs/design.md).
 #pragma once
 
 #include "common/math.h"

@@ -1,4 +1,4 @@
-// Reading and writing images. The file ending picks the format (DESIGN.md):
+// Reading and writing images. The file ending picks the format (docs/design.md):
 //   .png  sRGB-encoded 8-bit, clamped to [0, 1] (for looking at);
 //   .pfm  linear 32-bit float RGB per the PFM spec: little-endian (scale -1), bottom row first
 //         (for measuring).

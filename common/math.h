@@ -1,5 +1,5 @@
 // Vector types and constants shared by every stage. GLM supplies the arithmetic; these aliases fix
-// the precision (float everywhere unless a test shows float is not enough, see DESIGN.md).
+// the precision (float everywhere unless a test shows float is not enough, see docs/design.md).
 #pragma once
 
 #include <glm/geometric.hpp>

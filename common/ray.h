@@ -1,4 +1,4 @@
-// A ray o + t*d. By convention d is normalized, so t is a distance (DESIGN.md).
+// A ray o + t*d. By convention d is normalized, so t is a distance (docs/design.md).
 #pragma once
 
 #include "common/math.h"

@@ -1,158 +1,20 @@
-// Reading scene files. Every check names the file and the JSON path (RFC 6901 pointer) of what is
-// wrong, because a student's first scene will have a typo in it.
+// Reading scene files. Every check names the file and the JSON path of what is wrong
+// (common/json_node.h).
 #include "common/error.h"
 #include "common/file_io.h"
+#include "common/json_node.h"
 #include "common/obj_loader.h"
 #include "common/scene.h"
-
-#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <limits>
 #include <map>
-#include <set>
-#include <sstream>
 #include <utility>
 
 namespace rt {
 namespace {
 
-using Json = nlohmann::json;
-
-// A JSON value together with where it is, so every error can say so.
-class Node {
- public:
-  Node(const Json& value, std::string path, const std::string& source)
-      : value_(value), path_(std::move(path)), source_(source) {}
-
-  // Keys and strings are quoted as given, control characters escaped: the message is one line.
-  [[noreturn]] void fail(const std::string& problem) const {
-    throw InputError(printable(source_ + ": " + (path_.empty() ? "/" : path_) + ": " + problem));
-  }
-
-  const Json& value() const { return value_; }
-  bool has(const char* key) const { return value_.contains(key); }
-
-  Node operator[](const char* key) const {
-    if (!value_.contains(key)) fail(std::string("missing field '") + key + "'");
-    return Node(value_.at(key), path_ + "/" + key, source_);
-  }
-  Node at(size_t i) const {
-    return Node(value_.at(i), path_ + "/" + std::to_string(i), source_);
-  }
-
-  // Objects may only hold the keys the format defines: a misspelt key is an error, not a
-  // silently ignored default.
-  void expect_object() const {
-    if (!value_.is_object()) fail("expected an object, got " + type_name());
-  }
-  void expect_object(std::initializer_list<const char*> allowed) const {
-    expect_object();
-    const std::set<std::string> known(allowed.begin(), allowed.end());
-    for (const auto& item : value_.items())
-      if (!known.contains(item.key())) fail("unknown key '" + item.key() + "'");
-  }
-
-  size_t expect_array() const {
-    if (!value_.is_array()) fail("expected an array, got " + type_name());
-    return value_.size();
-  }
-
-  std::string as_string() const {
-    if (!value_.is_string()) fail("expected a string, got " + type_name());
-    return value_.get<std::string>();
-  }
-
-  float as_float() const {
-    if (!value_.is_number()) fail("expected a number, got " + type_name());
-    const double v = value_.get<double>();
-    if (!std::isfinite(v) || std::abs(v) > double(std::numeric_limits<float>::max()))
-      fail("the number " + given() + " is beyond float's range (+-3.4e38)");
-    return float(v);
-  }
-
-  float as_float(float lo, float hi, const char* what) const {
-    const float v = as_float();
-    if (!(v >= lo && v <= hi)) fail(std::string(what) + " must be in [" + fmt(lo) + ", " + fmt(hi) + "], got " + given());
-    return v;
-  }
-
-  // A size: positive in float and at most kMaxCoordinate (scene.h says why).
-  float as_size(const char* what) const {
-    const float v = as_float();
-    if (!(v > 0.0f))
-      fail(std::string(what) + " must be positive, got " + given() +
-           (value_.get<double>() > 0.0 ? " (0 in float)" : ""));
-    if (v > kMaxCoordinate) fail(std::string(what) + " must be at most 1e18, got " + given());
-    return v;
-  }
-
-  // Any integer in [lo, hi]. JSON keeps a non-negative integer unsigned and a negative one signed;
-  // each is compared as it is (std::cmp_*: no wrap-around), and quoted as given.
-  template <class Int>
-  Int as_integer(Int lo, Int hi) const {
-    if (!value_.is_number_integer())
-      fail("expected an integer, got " + type_name() + (value_.is_number() ? " " + given() : ""));
-    const auto in = [&](auto v) { return std::cmp_greater_equal(v, lo) && std::cmp_less_equal(v, hi); };
-    const bool unsigned_value = value_.is_number_unsigned();
-    if (!(unsigned_value ? in(value_.get<std::uint64_t>()) : in(value_.get<std::int64_t>())))
-      fail("must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + given());
-    return unsigned_value ? Int(value_.get<std::uint64_t>()) : Int(value_.get<std::int64_t>());
-  }
-  long long as_int(long long lo, long long hi) const { return as_integer<long long>(lo, hi); }
-
-  bool as_bool() const {
-    if (!value_.is_boolean()) fail("expected true or false, got " + type_name());
-    return value_.get<bool>();
-  }
-
-  Vec3 as_vec3() const {
-    if (!value_.is_array() || value_.size() != 3) fail("expected an array of 3 numbers");
-    return Vec3(at(0).as_float(), at(1).as_float(), at(2).as_float());
-  }
-
-  // A point of the scene: each coordinate within +-kMaxCoordinate (scene.h says why).
-  Vec3 as_position() const {
-    const Vec3 p = as_vec3();
-    for (int i = 0; i < 3; ++i)
-      if (!(std::abs(p[i]) <= kMaxCoordinate))
-        at(size_t(i)).fail("coordinate " + at(size_t(i)).given() + " lies beyond +-1e18, where squared distances overflow float");
-    return p;
-  }
-
-  // A direction of any length but zero, normalized in double, where neither a tiny one nor a huge
-  // one (1e38) under- or overflows its squared length.
-  Vec3 as_unit_vector() const {
-    const glm::dvec3 d(as_vec3());
-    if (!(glm::length(d) > 0.0)) fail("direction must not be zero");
-    return Vec3(glm::normalize(d));
-  }
-
-  Color as_color(float hi, const char* what) const {
-    const Vec3 c = as_vec3();
-    for (int i = 0; i < 3; ++i)
-      if (!(c[i] >= 0.0f && c[i] <= hi))
-        at(size_t(i)).fail(std::string(what) + " must be in [0, " + fmt(hi) + "], got " + at(size_t(i)).given());
-    return c;
-  }
-
-  // The value as the file spells it (for a number, the shortest text that reads back the same).
-  std::string given() const { return value_.dump(); }
-
- private:
-  std::string type_name() const { return value_.type_name(); }
-  static std::string fmt(float v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-  }
-
-  const Json& value_;
-  std::string path_;
-  const std::string& source_;
-};
-
-RenderSettings parse_render(const Node& n) {
+RenderSettings parse_render(const JsonNode& n) {
   n.expect_object({"width", "height", "spp", "seed", "max_depth", "pixel_center_only"});
   RenderSettings r;
   if (n.has("width")) r.width = int(n["width"].as_int(1, kMaxImageSide));
@@ -164,7 +26,7 @@ RenderSettings parse_render(const Node& n) {
   return r;
 }
 
-CameraSpec parse_camera(const Node& n) {
+CameraSpec parse_camera(const JsonNode& n) {
   n.expect_object({"position", "look_at", "up", "vfov"});
   CameraSpec c;
   c.position = n["position"].as_position();
@@ -183,12 +45,12 @@ CameraSpec parse_camera(const Node& n) {
   return c;
 }
 
-Checker parse_checker(const Node& c) {
+Checker parse_checker(const JsonNode& c) {
   c.expect_object({"albedo", "size"});
   return Checker{c["albedo"].as_color(1.0f, "albedo (more than 1 creates energy)"), c["size"].as_size("checker size")};
 }
 
-Material parse_material(const Node& n, const std::string& name) {
+Material parse_material(const JsonNode& n, const std::string& name) {
   n.expect_object();
   Material m;
   m.name = name;
@@ -235,7 +97,7 @@ Material parse_material(const Node& n, const std::string& name) {
 }
 
 template <size_t N>
-std::array<Vec3, N> parse_vertices(const Node& n) {
+std::array<Vec3, N> parse_vertices(const JsonNode& n) {
   if (n.expect_array() != N) n.fail("expected " + std::to_string(N) + " vertices");
   std::array<Vec3, N> v;
   for (size_t i = 0; i < N; ++i) v[i] = n.at(i).as_position();
@@ -244,11 +106,11 @@ std::array<Vec3, N> parse_vertices(const Node& n) {
 
 // "transform": {"scale": s or [sx, sy, sz], "rotate": [x, y, z] degrees, "translate": [x, y, z]},
 // each optional.
-Transform parse_transform(const Node& n) {
+Transform parse_transform(const JsonNode& n) {
   n.expect_object({"scale", "rotate", "translate"});
   Vec3 scale(1.0f), rotate(0.0f), translate(0.0f);
   if (n.has("scale")) {
-    const Node s = n["scale"];
+    const JsonNode s = n["scale"];
     scale = s.value().is_array() ? s.as_vec3() : Vec3(s.as_float());
     if (!(scale.x != 0.0f && scale.y != 0.0f && scale.z != 0.0f))
       s.fail("scale must not be zero on any axis (the mesh would be flat)");
@@ -260,7 +122,7 @@ Transform parse_transform(const Node& n) {
 
 // A round shape (sphere, torus, disk) reaches `reach` from its centre in every direction: its box
 // must lie within +-kMaxCoordinate (scene.h).
-void require_inside_limit(const Node& n, Vec3 center, double reach) {
+void require_inside_limit(const JsonNode& n, Vec3 center, double reach) {
   for (int i = 0; i < 3; ++i)
     if (std::abs(double(center[i])) + reach > double(kMaxCoordinate))
       n.fail("the shape reaches beyond +-1e18 (its centre plus its size), where squared distances overflow float");
@@ -276,7 +138,7 @@ glm::dvec3 vertex_extent(const TriangleMesh& mesh) {
 // A placed mesh's box: a bound on every coordinate of M p + t over the mesh's vertices p (whose
 // largest coordinates are `extent`), with each term of the float sums the renderer computes
 // bounded by it, so that none of them can overflow.
-void require_placed_mesh_inside_limit(const Node& n, glm::dvec3 extent, const Transform& transform) {
+void require_placed_mesh_inside_limit(const JsonNode& n, glm::dvec3 extent, const Transform& transform) {
   for (int i = 0; i < 3; ++i) {
     double reach = std::abs(double(transform.matrix[3][i]));
     for (int j = 0; j < 3; ++j) reach += std::abs(double(transform.matrix[j][i])) * extent[j];
@@ -290,7 +152,7 @@ void require_placed_mesh_inside_limit(const Node& n, glm::dvec3 extent, const Tr
 class MeshCache {
  public:
   explicit MeshCache(std::filesystem::path folder) : folder_(std::move(folder)) {}
-  Mesh load(const Node& n) {
+  Mesh load(const JsonNode& n) {
     const std::filesystem::path file = (folder_ / n["file"].as_string()).lexically_normal();
     Entry& entry = meshes_[file.string()];
     if (!entry.mesh) {
@@ -315,7 +177,7 @@ class MeshCache {
   std::map<std::string, Entry> meshes_;
 };
 
-Geometry parse_geometry(const Node& n, const std::string& type, MeshCache& meshes) {
+Geometry parse_geometry(const JsonNode& n, const std::string& type, MeshCache& meshes) {
   if (type == "sphere") {
     n.expect_object({"type", "name", "material", "center", "radius"});
     const Sphere sphere{n["center"].as_position(), n["radius"].as_size("radius")};
@@ -355,7 +217,7 @@ Geometry parse_geometry(const Node& n, const std::string& type, MeshCache& meshe
   n["type"].fail("unknown shape type '" + type + "' (known: sphere, plane, torus, triangle, quad, mesh, disk)");
 }
 
-PointLight parse_light(const Node& n) {
+PointLight parse_light(const JsonNode& n) {
   n.expect_object({"type", "position", "intensity"});
   if (n["type"].as_string() != "point")
     n["type"].fail("unknown light type '" + n["type"].as_string() + "' (known: point)");
@@ -379,7 +241,7 @@ SceneDescription parse_scene(const std::string& text, const std::string& source)
     if (tag_end != std::string::npos) what = what.substr(tag_end + 2);
     throw InputError(printable(source + ": malformed JSON: " + what));
   }
-  const Node root(json, "", source);
+  const JsonNode root(json, "", source);
   root.expect_object({"render", "camera", "background", "materials", "shapes", "lights"});
 
   SceneDescription scene;
@@ -389,19 +251,19 @@ SceneDescription parse_scene(const std::string& text, const std::string& source)
   if (root.has("background")) scene.background = root["background"].as_color(3.0e38f, "background radiance");
 
   std::map<std::string, int> material_index;
-  const Node materials = root["materials"];
+  const JsonNode materials = root["materials"];
   materials.expect_object();  // any name; each material is checked below
   for (const auto& item : json["materials"].items()) {
-    const Node m(item.value(), "/materials/" + item.key(), scene.source);
+    const JsonNode m(item.value(), "/materials/" + item.key(), scene.source);
     material_index[item.key()] = int(scene.materials.size());
     scene.materials.push_back(parse_material(m, item.key()));
   }
 
   MeshCache meshes(std::filesystem::path(source).parent_path());
-  const Node shapes = root["shapes"];
+  const JsonNode shapes = root["shapes"];
   const size_t shape_count = shapes.expect_array();
   for (size_t i = 0; i < shape_count; ++i) {
-    const Node s = shapes.at(i);
+    const JsonNode s = shapes.at(i);
     s.expect_object();
     Shape shape;
     shape.geometry = parse_geometry(s, s["type"].as_string(), meshes);
@@ -414,7 +276,7 @@ SceneDescription parse_scene(const std::string& text, const std::string& source)
   }
 
   if (root.has("lights")) {
-    const Node lights = root["lights"];
+    const JsonNode lights = root["lights"];
     const size_t light_count = lights.expect_array();
     for (size_t i = 0; i < light_count; ++i) scene.lights.push_back(parse_light(lights.at(i)));
   }

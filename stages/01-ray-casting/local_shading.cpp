@@ -7,7 +7,7 @@
 
 namespace rt {
 
-Color blinn_phong_brdf(const Material& material, Color albedo, Vec3 n, Vec3 wi, Vec3 wo) {
+Color blinn_phong_brdf(const Material& material, Color albedo, Vec3 n, Vec3 wo, Vec3 wi) {
   // BEGIN TASK stage1.shading.brdf
   const Color diffuse = albedo * kInvPi;
   if (material.specular == Color(0.0f)) return diffuse;
@@ -40,7 +40,7 @@ Color shade_local(const RayCastingScene& scene, const Hit& hit, Vec3 to_viewer) 
     const float shadow_length = glm::length(shadow_span);
     if (scene.occluded(Ray{shadow_origin, shadow_span / shadow_length}, Interval{0.0f, shadow_length}))
       continue;
-    radiance += blinn_phong_brdf(material, albedo, hit.normal, wi, to_viewer) * light.intensity *
+    radiance += blinn_phong_brdf(material, albedo, hit.normal, to_viewer, wi) * light.intensity *
                 (cos_theta / distance_squared);
   }
   // PLACEHOLDER

@@ -19,8 +19,9 @@ namespace rt {
 // the usual approximate normalization of the Blinn-Phong lobe (Akenine-Moeller et al.,
 // Real-Time Rendering, 4th ed., section 9.8), which keeps its highlight's energy roughly
 // constant as the exponent s changes. All directions are unit vectors pointing AWAY from the
-// surface; n is on the viewer's side.
-Color blinn_phong_brdf(const Material& material, Color albedo, Vec3 n, Vec3 wi, Vec3 wo);
+// surface, wo (towards the viewer) first, as in every BRDF of the framework; n is on the viewer's
+// side.
+Color blinn_phong_brdf(const Material& material, Color albedo, Vec3 n, Vec3 wo, Vec3 wi);
 
 // Task stage1.shading.local. Radiance leaving hit.point towards `to_viewer`: the material's
 // emission (front face only) plus, for every point light above the surface (n.wi > 0) that a

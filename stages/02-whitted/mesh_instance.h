@@ -21,7 +21,7 @@ glm::mat3 normal_matrix(const glm::mat3& linear);
 // triangles clockwise, so two corners of every triangle are swapped to keep the outward side out.
 TriangleMesh place_mesh(const TriangleMesh& mesh, const Transform& transform);
 
-// One triangle, and a quad meshed as (v0, v1, v2) + (v0, v2, v3) (DESIGN.md): exact for a planar
+// One triangle, and a quad meshed as (v0, v1, v2) + (v0, v2, v3) (docs/design.md): exact for a planar
 // parallelogram, and the definition of the surface when the four corners are not coplanar.
 TriangleMesh mesh_from_triangle(const Triangle& triangle);
 TriangleMesh mesh_from_quad(const Quad& quad);

@@ -80,6 +80,13 @@ class PrimitiveSet {
   auto& store() { return std::get<K>(stores_); }
   template <size_t K>
   const auto& store() const { return std::get<K>(stores_); }
+  // A kind's place in the list: what PrimitiveHit::kind says for it.
+  template <class Wanted, size_t K = 0>
+  static constexpr size_t index_of() {
+    static_assert(K < kKinds, "this kind is not in the set");
+    if constexpr (std::is_same_v<Kind<K>, Wanted>) return K;
+    else return index_of<Wanted, K + 1>();
+  }
   // The store of a kind named by type, for the code that knows which kind it wants.
   template <class Wanted>
   auto& store_of() { return store<index_of<Wanted>()>(); }
@@ -111,13 +118,6 @@ class PrimitiveSet {
   }
 
  private:
-  template <class Wanted, size_t K = 0>
-  static constexpr size_t index_of() {
-    static_assert(K < kKinds, "this kind is not in the set");
-    if constexpr (std::is_same_v<Kind<K>, Wanted>) return K;
-    else return index_of<Wanted, K + 1>();
-  }
-
   std::tuple<typename Kinds::Store...> stores_;
 };
 

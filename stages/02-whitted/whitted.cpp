@@ -21,7 +21,7 @@ Color shade_direct(const WhittedScene& scene, const Hit& hit, Vec3 wo, const Off
     if (cos_theta <= 0.0f || glm::dot(hit.normal, wi) <= 0.0f) continue;
     const ShadowRay shadow = spawn_shadow_ray(hit, light.position, offset);
     if (scene.occluded(shadow.ray, shadow.range)) continue;
-    radiance += blinn_phong_brdf(material, albedo, n, wi, wo) * light.intensity * (cos_theta / distance_squared);
+    radiance += blinn_phong_brdf(material, albedo, n, wo, wi) * light.intensity * (cos_theta / distance_squared);
   }
   // PLACEHOLDER
   // report_unfinished_task("stage2.whitted.direct");

@@ -36,6 +36,13 @@ class FlatPrimitives {
       return hit;
     });
   }
+  // Whether that primitive is hit at all: the shadow rays' question, which needs no record.
+  bool occludes(size_t slot, const TriangleRay& ray, Interval range) const {
+    const typename Set::AnyHot& hot = hot_[slot];
+    return visit_kind<Set::kKinds>(hot.index(), [&](auto k) {
+      return Set::template Kind<k>::intersect(set_->template store<k>(), *std::get_if<k>(&hot), ray, range).has_value();
+    });
+  }
   size_t bytes() const { return size() * (sizeof(hot_[0]) + sizeof(index_[0])); }
 
  private:
@@ -134,7 +141,7 @@ template <class Set>
 bool NaiveAggregate<Set>::occluded(const Ray& ray, Interval range) const {
   const TriangleRay prepared(ray);
   for (size_t slot = 0; slot < flat_.size(); ++slot)
-    if (flat_.intersect(slot, prepared, range)) return true;
+    if (flat_.occludes(slot, prepared, range)) return true;
   return false;
 }
 
@@ -169,7 +176,7 @@ std::optional<PrimitiveHit> BvhAggregate<Set>::closest_hit(const Ray& ray, Inter
 template <class Set>
 bool BvhAggregate<Set>::occluded(const Ray& ray, Interval range) const {
   const TriangleRay prepared(ray);
-  auto hits_primitive = [&](std::uint32_t slot, Interval r) { return flat_.intersect(slot, prepared, r).has_value(); };
+  auto hits_primitive = [&](std::uint32_t slot, Interval r) { return flat_.occludes(slot, prepared, r); };
   return wide_ ? wide_bvh_any_hit(*wide_, ray, range, hits_primitive) : bvh_any_hit(bvh_, ray, range, hits_primitive);
 }
 

@@ -8,17 +8,24 @@
 
 #include <glm/exponential.hpp>
 
+#include <cmath>
+
 namespace rt {
 
 struct DiskKind : PlacedGeometryKind<Disk> {
-  // Along axis i a disk of radius r with unit normal n reaches r sqrt(1 - n_i^2) from its centre.
-  // Near n_i = +-1 that square root magnifies the rounding of n_i^2 (to about 3e-4 r), hence the
-  // pad of 1e-3 r: a box too small by a hair would let the BVH drop a hit at the rim.
+  // Along axis i a disk of radius r with unit normal n reaches r sqrt(1 - n_i^2) = r sqrt(n_j^2 +
+  // n_k^2) from its centre. The second form has no cancellation: for a disk tilted by 1e-4 from an
+  // axis, n_i rounds to 1 and the first would give a flat box that the rim pokes out of. The pad
+  // of 1e-5 covers the rounding of the reach, and |n| being 1 only to float precision; c +- reach
+  // is then rounded outwards, a float step beyond.
   static Aabb bounds(const Disk& disk) {
-    const Vec3 reach = disk.radius * (glm::sqrt(glm::max(Vec3(0.0f), 1.0f - disk.normal * disk.normal)) + 1e-3f);
+    const Vec3 n2 = disk.normal * disk.normal;
+    const Vec3 reach = disk.radius * 1.00001f * glm::sqrt(Vec3(n2.y + n2.z, n2.x + n2.z, n2.x + n2.y));
     Aabb box;
-    box.expand(disk.center - reach);
-    box.expand(disk.center + reach);
+    for (int axis = 0; axis < 3; ++axis) {
+      box.lo[axis] = std::nextafter(disk.center[axis] - reach[axis], -kInfinity);
+      box.hi[axis] = std::nextafter(disk.center[axis] + reach[axis], kInfinity);
+    }
     return box;
   }
   // Stage 1's ray-plane test (stage1.plane.intersect), then |p - c|^2 <= r^2.

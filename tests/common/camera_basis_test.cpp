@@ -8,7 +8,7 @@ namespace rt {
 namespace {
 
 TEST(CameraBasis, LookingDownPlusZHasPlusXOnTheLeft) {
-  // DESIGN.md: forward x up = right, so looking down +z with up +y, right is -x.
+  // docs/design.md: forward x up = right, so looking down +z with up +y, right is -x.
   const PinholeCamera camera(CameraSpec{Vec3(0), Vec3(0, 0, 1), Vec3(0, 1, 0), 90.0f}, 200, 100);
   EXPECT_EQ(camera.forward, Vec3(0, 0, 1));
   EXPECT_EQ(camera.right, Vec3(-1, 0, 0));

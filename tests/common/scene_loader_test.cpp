@@ -21,7 +21,7 @@ TEST(SceneLoader, LoadsTheSpheresScene) {
   EXPECT_EQ(scene.lights.size(), 2u);
 }
 
-// DESIGN.md's canonical Cornell box, checked against the numbers it gives.
+// docs/design.md's canonical Cornell box, checked against the numbers it gives.
 class CornellBox : public ::testing::Test {
  protected:
   SceneDescription scene = load_scene(source_path("assets/scenes/cornell-box.json"));
@@ -94,9 +94,8 @@ TEST_F(CornellBox, BlockFacesFaceOutward) {
 }
 
 TEST_F(CornellBox, RedWallIsNotPlanar) {
-  // The red wall's two triangles are 0.468 degrees apart (computed in double; DESIGN.md's
-  // "about 0.7" overstates it), which is why the triangulation (v0,v1,v2)+(v0,v2,v3) is part of
-  // the scene.
+  // The red wall's two triangles are 0.468 degrees apart (computed in double; docs/design.md),
+  // which is why the triangulation (v0,v1,v2)+(v0,v2,v3) is part of the scene.
   const auto n = triangle_normals(std::get<Quad>(shape("left wall").geometry));
   const float degrees = std::acos(glm::dot(glm::normalize(n[0]), glm::normalize(n[1]))) * 180.0f / kPi;
   EXPECT_NEAR(degrees, 0.468f, 0.005f);

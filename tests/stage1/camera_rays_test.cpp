@@ -6,7 +6,7 @@ namespace rt {
 namespace {
 
 // Camera at the origin looking down +z, vfov 90 degrees (tan = 1), 200 x 100 pixels (aspect 2).
-// Its right vector is -x (DESIGN.md), so the LEFT edge of the image looks towards +x.
+// Its right vector is -x (docs/design.md), so the LEFT edge of the image looks towards +x.
 const PinholeCamera kCamera(CameraSpec{Vec3(0), Vec3(0, 0, 1), Vec3(0, 1, 0), 90.0f}, 200, 100);
 
 void expect_direction(Vec2 film_point, Vec3 expected) {

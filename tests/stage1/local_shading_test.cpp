@@ -90,7 +90,7 @@ TEST(LocalShading, EmissionOnlyFromTheFrontFace) {
 TEST(BlinnPhong, LambertOnlyWithoutSpecular) {
   Material m;
   m.albedo = Color(0.3f, 0.6f, 0.9f);
-  const Color f = blinn_phong_brdf(m, m.albedo, Vec3(0, 0, 1), glm::normalize(Vec3(1, 0, 1)), Vec3(0, 0, 1));
+  const Color f = blinn_phong_brdf(m, m.albedo, Vec3(0, 0, 1), Vec3(0, 0, 1), glm::normalize(Vec3(1, 0, 1)));
   EXPECT_NEAR(f.g, 0.6f / kPi, 1e-7f);
 }
 
@@ -102,10 +102,10 @@ TEST(BlinnPhong, NormalizedLobeAtAndAwayFromTheMirrorDirection) {
   const Vec3 n(0, 0, 1);
   // wi and wo mirror each other about n: h = n, the lobe's peak (s + 8) / (8 pi).
   const Vec3 wi = glm::normalize(Vec3(1, 0, 1)), wo = glm::normalize(Vec3(-1, 0, 1));
-  EXPECT_NEAR(blinn_phong_brdf(m, m.albedo, n, wi, wo).r, 28.0f / (8.0f * kPi), 1e-5f);
+  EXPECT_NEAR(blinn_phong_brdf(m, m.albedo, n, wo, wi).r, 28.0f / (8.0f * kPi), 1e-5f);
   // wo = n, wi at 60 degrees: h is 30 degrees from n, so the lobe is (28 / 8pi) cos(30)^20.
   const Vec3 wi60(std::sin(radians(60.0f)), 0, std::cos(radians(60.0f)));
-  EXPECT_NEAR(blinn_phong_brdf(m, m.albedo, n, wi60, n).r,
+  EXPECT_NEAR(blinn_phong_brdf(m, m.albedo, n, n, wi60).r,
               28.0f / (8.0f * kPi) * std::pow(std::cos(radians(30.0f)), 20.0f), 1e-5f);
 }
 

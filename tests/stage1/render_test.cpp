@@ -58,7 +58,7 @@ TEST(Render, PixelCentreOnlyIsOneRayPerPixel) {
 }
 
 TEST(Render, ImageOrientation) {
-  // Row 0 is the top of the image, and +x world is on the LEFT for this camera (DESIGN.md):
+  // Row 0 is the top of the image, and +x world is on the LEFT for this camera (docs/design.md):
   // the red sphere at (+1.6, +1.2) lands in the top-left quarter.
   const SceneDescription d = two_spheres();
   RenderSettings s = d.render;

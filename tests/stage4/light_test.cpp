@@ -2,12 +2,15 @@
 // checked for unbiasedness against closed forms: E[1 / p(w)] is the solid angle the emitter
 // subtends, and E[cos(theta) / p(w)] its projected solid angle, which Lambert's polygon formula and
 // the configuration factors of closed_form.h give exactly.
+#include "03-acceleration/bvh_aggregate.h"
 #include "04-radiometry/discrete_distribution.h"
 #include "04-radiometry/emitters.h"
 #include "04-radiometry/lighting_scene.h"
 #include "04-radiometry/radiometry.h"
 #include "chi_square.h"
 #include "common/error.h"
+#include "common/frame.h"
+#include "common/random.h"
 #include "closed_form.h"
 
 #include <gtest/gtest.h>
@@ -237,6 +240,79 @@ TEST(LightingScene, FindsDisksAndNamesEmitters) {
   EXPECT_EQ(scene.emitter_index(*down), -1);
   EXPECT_TRUE(scene.occluded(Ray{Vec3(0.1f, 0, 0), Vec3(0, 1, 0)}, Interval{0.0f, 2.0f}));
   EXPECT_FALSE(scene.occluded(Ray{Vec3(0.1f, 0, 0), Vec3(0, 1, 0)}, Interval{0.0f, 0.9f}));
+}
+
+// Disks lie in the BVH with the other kinds (DiskKind, 04-radiometry/disk_kind.h): every tree
+// must find exactly what brute force finds, also for rays aimed just inside a disk's rim, which a
+// disk's box must not cut off (its extent r sqrt(1 - n_i^2) per axis, zero along an axis normal).
+TEST(LightingScene, DisksInTheBvhAgreeWithBruteForce) {
+  auto set = std::make_shared<LightingPrimitives>();
+  Rng rng(77, 0, 0);
+  auto unit = [&] { return glm::normalize(Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f); };
+  auto point = [&] { return Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 8.0f - 4.0f; };
+  const Vec3 axes[] = {Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, 1)};
+  std::vector<Disk> disks;
+  for (int i = 0; i < 60; ++i) disks.push_back(Disk{point(), i < 30 ? axes[i % 3] : unit(), 0.2f + rng.uniform()});
+  for (const Disk& d : disks) set->store_of<DiskKind>().push_back({d, 0, 0});
+  for (int i = 0; i < 10; ++i) set->store_of<SphereKind>().push_back({Sphere{point(), 0.3f}, 0, 0});
+  set->store_of<TriangleKind>().add_mesh(make_uv_sphere(8, 16, 0.1f, 3), 0, 0);
+
+  std::vector<Ray> rays;
+  for (int i = 0; i < 3000; ++i) {
+    const Disk& d = disks[size_t(i) % disks.size()];
+    const Frame frame = Frame::from_normal(d.normal);
+    const float phi = 2.0f * kPi * rng.uniform();
+    const float radius = d.radius * (i % 2 ? 0.9999f : rng.uniform());  // every other ray at the rim
+    const Vec3 target = d.center + radius * (std::cos(phi) * frame.s + std::sin(phi) * frame.t);
+    const Vec3 origin = target + 10.0f * unit();
+    rays.push_back(Ray{origin, glm::normalize(target - origin)});
+  }
+  const NaiveAggregate naive(set);
+  for (const bool wide : {false, true}) {
+    const BvhAggregate bvh(set, BvhBuildOptions{.wide = wide});
+    int disk_hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const auto a = naive.closest_hit(rays[i], Interval::positive());
+      const auto b = bvh.closest_hit(rays[i], Interval::positive());
+      ASSERT_EQ(a.has_value(), b.has_value()) << "ray " << i << (wide ? ", 4-wide" : "");
+      if (!a) continue;
+      EXPECT_EQ(a->t, b->t) << "ray " << i;
+      EXPECT_EQ(a->kind, b->kind) << "ray " << i;
+      EXPECT_EQ(a->index, b->index) << "ray " << i;
+      disk_hits += a->kind == LightingPrimitives::index_of<DiskKind>() ? 1 : 0;
+      EXPECT_EQ(bvh.occluded(rays[i], Interval::positive()), true) << "ray " << i;
+    }
+    EXPECT_GT(disk_hits, 2000) << "the rays are aimed at disks and must mostly hit one";
+  }
+}
+
+// A disk's box holds its whole rim, also when the disk is tilted from an axis by so little that
+// n_i rounds to 1 (where r sqrt(1 - n_i^2) would cancel to a flat box), and the box is tight.
+TEST(LightingScene, DiskBoxesHoldTheirRims) {
+  const Vec3 normals[] = {Vec3(0, 1, 0), glm::normalize(Vec3(1e-4f, 1, 0)), glm::normalize(Vec3(0, -3e-4f, 1)),
+                          glm::normalize(Vec3(1, 1, 1)), glm::normalize(Vec3(0.2f, -0.9f, 0.1f))};
+  for (const Vec3& n : normals) {
+    const Disk disk{Vec3(3, -2, 5), n, 1.5f};
+    const Aabb box = DiskKind::bounds(disk);
+    // The rim in double: c + r (cos(phi) s + sin(phi) t), for an orthonormal s, t across n.
+    const glm::dvec3 dn = glm::normalize(glm::dvec3(n));
+    const glm::dvec3 s = glm::normalize(glm::cross(dn, std::abs(dn.x) < 0.5 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+    const glm::dvec3 t = glm::cross(dn, s);
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (int k = 0; k < 3600; ++k) {
+      const double phi = 2.0 * 3.14159265358979323846 * k / 3600.0;
+      const glm::dvec3 p = glm::dvec3(disk.center) + double(disk.radius) * (std::cos(phi) * s + std::sin(phi) * t);
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+      for (int axis = 0; axis < 3; ++axis) {
+        ASSERT_LE(double(box.lo[axis]), p[axis]) << "axis " << axis << ", normal " << n.x << " " << n.y << " " << n.z;
+        ASSERT_GE(double(box.hi[axis]), p[axis]) << "axis " << axis << ", normal " << n.x << " " << n.y << " " << n.z;
+      }
+    }
+    for (int axis = 0; axis < 3; ++axis) {  // and no looser than the rim's own extent needs
+      EXPECT_NEAR(double(box.hi[axis] - box.lo[axis]), hi[axis] - lo[axis], 1e-3 * disk.radius) << "axis " << axis;
+    }
+  }
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// Stage 5 on the Cornell box of DESIGN.md against its converged reference
+// Stage 5 on the Cornell box of docs/design.md against its converged reference
 // (assets/references/cornell-box-256.pfm, made by the command in assets/references/README.md):
 // every integrator finds the reference's mean over the box's regions, the error falls as N^-1/2,
 // and ten million paths give no NaN.
