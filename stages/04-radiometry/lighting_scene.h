@@ -5,7 +5,9 @@
 // to their areas.
 #pragma once
 
-#include "02-whitted/whitted_scene.h"
+#include "02-whitted/sphere_kind.h"
+#include "02-whitted/surface_scene.h"
+#include "02-whitted/triangle_kind.h"
 #include "04-radiometry/discrete_distribution.h"
 #include "04-radiometry/disk_kind.h"
 #include "04-radiometry/emitters.h"

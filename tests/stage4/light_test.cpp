@@ -236,7 +236,7 @@ TEST(LightingScene, FindsDisksAndNamesEmitters) {
   EXPECT_GE(scene.emitter_index(*beside), 1);
   const auto down = scene.closest_hit(Ray{Vec3(0, 0, 0), Vec3(0, -1, 0)}, Interval::positive());
   ASSERT_TRUE(down);
-  EXPECT_EQ(down->primitive, 0);  // index in the file, though the disk before it is held apart
+  EXPECT_EQ(down->primitive, 0);  // the shape's index in the file, whatever its kind
   EXPECT_EQ(scene.emitter_index(*down), -1);
   EXPECT_TRUE(scene.occluded(Ray{Vec3(0.1f, 0, 0), Vec3(0, 1, 0)}, Interval{0.0f, 2.0f}));
   EXPECT_FALSE(scene.occluded(Ray{Vec3(0.1f, 0, 0), Vec3(0, 1, 0)}, Interval{0.0f, 0.9f}));
