@@ -93,7 +93,8 @@ class PrimitiveSet {
   template <class Wanted>
   const auto& store_of() const { return store<index_of<Wanted>()>(); }
 
-  // Offers the scene file's shape `shape` to each kind in turn; false when none takes it.
+  // Offers the scene file's shape `shape` to each kind in the list's order: the first that takes it
+  // keeps it (so a kind listed before TriangleKind may claim some quads). False when none does.
   bool add(const Shape& description, int shape) {
     bool taken = false;
     for_each_kind([&](auto k) { taken = taken || Kind<k>::add(store<k>(), description, shape); });
