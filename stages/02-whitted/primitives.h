@@ -1,8 +1,8 @@
 // Stage 2: the bounded primitives of a scene, open to new kinds. A kind (SphereKind and
 // TriangleKind here, DiskKind in stage 4) is intersected by the stage that teaches it; a
 // PrimitiveSet holds one store per kind, and every aggregate (stage 2's linear one, stage 3's BVHs)
-// is a template over the set, so each kind's test is called directly: no virtual call and no
-// variant dispatch per primitive. Adding a kind is one kind class in the stage that teaches it plus
+// is a template over the set, so each kind's test is called directly: no virtual call per
+// primitive, only a switch on its kind (visit_kind). Adding a kind is one kind class in the stage that teaches it plus
 // its name in that stage's kind list (docs/design.md, "Registration points").
 //
 // The contract of a kind: a class of static functions, written out here once.
@@ -15,7 +15,9 @@
 //   hot(const Store&, size_t i) -> Hot (or a reference to one)
 //   bounds(const Hot&) -> Aabb
 //   intersect(const Store&, const Hot&, const TriangleRay&, Interval) -> std::optional<PrimitiveHit>
-//                     the hit with t strictly inside the interval; fills t, b1, b2 (not kind, index)
+//                     the hit with t strictly inside the interval; fills t, b1, b2 (not kind, index).
+//                     TriangleRay is the ray with what the triangle tests prepare once per ray;
+//                     other kinds read its .ray
 //   hit_record(const Store&, const PrimitiveHit&, const Ray&) -> Hit
 //                     the full record of a hit this kind reported, through make_hit (common/hit.h)
 //   runs(const Store&) -> std::vector<PrimitiveRun>
