@@ -28,11 +28,10 @@ std::vector<PrimitiveRun> TriangleKind::runs(const Store& store) {
 Hit TriangleKind::hit_record(const Store& store, const PrimitiveHit& found, const Ray& ray) {
   const std::uint32_t m = store.mesh_of[found.index];
   const Placed<TriangleMesh>& placed = store.meshes[m];
-  const TriangleMesh& mesh = placed.geometry;
   const size_t triangle = found.index - store.first[m];
-  const auto& corners = mesh.triangles[triangle];
-  const Vec3 v0 = mesh.positions[corners[0]], v1 = mesh.positions[corners[1]], v2 = mesh.positions[corners[2]];
+  const auto [v0, v1, v2] = hot(store, found.index);
   // BEGIN TASK stage2.mesh.hit_record
+  const TriangleMesh& mesh = placed.geometry;
   const Vec3 b(1.0f - found.b1 - found.b2, found.b1, found.b2);
   const SurfacePoint surface = triangle_point(b, v0, v1, v2);
   Hit hit = make_hit(ray, found.t, surface.point, surface.error, glm::normalize(glm::cross(v1 - v0, v2 - v0)),

@@ -25,27 +25,28 @@ class FlatPrimitives {
   void reorder(const std::vector<std::uint32_t>& order);
   // The hit of the primitive in `slot` with t strictly inside `range`.
   std::optional<PrimitiveHit> intersect(size_t slot, const TriangleRay& ray, Interval range) const {
-    const typename Set::AnyHot& hot = hot_[slot];
-    return visit_kind<Set::kKinds>(hot.index(), [&](auto k) {
-      std::optional<PrimitiveHit> hit =
-          Set::template Kind<k>::intersect(set_->template store<k>(), *std::get_if<k>(&hot), ray, range);
-      if (hit) {
-        hit->kind = std::uint8_t(k);
-        hit->index = index_[slot];
-      }
-      return hit;
-    });
+    std::optional<PrimitiveHit> hit = test(slot, ray, range);
+    if (hit) {
+      hit->kind = std::uint8_t(hot_[slot].index());
+      hit->index = index_[slot];
+    }
+    return hit;
   }
-  // Whether that primitive is hit at all: the shadow rays' question, which needs no record.
+  // Whether that primitive is hit at all: the shadow rays' question, which reads no index.
   bool occludes(size_t slot, const TriangleRay& ray, Interval range) const {
-    const typename Set::AnyHot& hot = hot_[slot];
-    return visit_kind<Set::kKinds>(hot.index(), [&](auto k) {
-      return Set::template Kind<k>::intersect(set_->template store<k>(), *std::get_if<k>(&hot), ray, range).has_value();
-    });
+    return test(slot, ray, range).has_value();
   }
   size_t bytes() const { return size() * (sizeof(hot_[0]) + sizeof(index_[0])); }
 
  private:
+  // The slot's kind's own test: t, b1, b2 of its hit.
+  std::optional<PrimitiveHit> test(size_t slot, const TriangleRay& ray, Interval range) const {
+    const typename Set::AnyHot& hot = hot_[slot];
+    return visit_kind<Set::kKinds>(hot.index(), [&](auto k) {
+      return Set::template Kind<k>::intersect(set_->template store<k>(), *std::get_if<k>(&hot), ray, range);
+    });
+  }
+
   std::shared_ptr<const Set> set_;
   std::vector<typename Set::AnyHot> hot_;  // per slot
   std::vector<std::uint32_t> index_;       // per slot: the primitive's index within its kind
