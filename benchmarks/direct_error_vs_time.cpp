@@ -1,6 +1,7 @@
 // Writes docs/charts/stage4-direct.csv, the data behind docs/charts/stage4-direct-error-vs-time.png:
 // for a scene lit by a small emitter and the same scene lit by a large one (equal power), each of
-// the four direct-lighting estimators renders at 1, 2, 4, ... 256 samples per pixel; each render's
+// the four direct-lighting estimators (and light sampling with the rectangle lights sampled by
+// solid angle) renders at 1, 2, 4, ... 256 samples per pixel; each render's
 // wall time and its RMSE against a converged reference are recorded. Prints the time each
 // estimator needs to reach a fixed error, as ratios to light sampling.
 // Run through tools/make-charts.sh, or: build/release/bin/direct_error_vs_time OUT.csv
@@ -11,8 +12,9 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
-#include <map>
+#include <utility>
 #include <string>
+#include <vector>
 
 namespace rt::bench {
 namespace {
@@ -61,26 +63,32 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: direct_error_vs_time OUT.csv\n");
     return 2;
   }
-  const std::map<DirectEstimator, const char*> names{{DirectEstimator::uniform_hemisphere, "uniform"},
-                                                     {DirectEstimator::cosine_hemisphere, "cosine"},
-                                                     {DirectEstimator::brdf, "brdf"},
-                                                     {DirectEstimator::light, "light"}};
+  const std::vector<std::pair<DirectEstimator, const char*>> names{{DirectEstimator::uniform_hemisphere, "uniform"},
+                                                                   {DirectEstimator::cosine_hemisphere, "cosine"},
+                                                                   {DirectEstimator::brdf, "brdf"},
+                                                                   {DirectEstimator::light, "light"}};
   std::ofstream csv(argv[1]);
   csv << "scene,estimator,spp,seconds,rmse\n";
   for (const Setup setup : {Setup{"small light", "assets/scenes/direct-small-light.json"},
                             Setup{"large light", "assets/scenes/direct-large-light.json"}}) {
     const SceneDescription description = load_scene(std::string(RT_SOURCE_DIR) + "/" + setup.file);
     const LightingScene scene(description);
+    LightingOptions by_solid_angle;
+    by_solid_angle.rectangle_sampling = RectangleSampling::solid_angle;
+    const LightingScene solid_angle_scene(description, by_solid_angle);
     const PinholeCamera camera(description.camera, kWidth, kHeight);
     const Image truth = reference(scene, camera);
     std::printf("%s (reference: light sampling, %d spp)\n", setup.name, kReferenceSpp);
-    for (const auto& [estimator, name] : names) {
+    auto series = names;
+    series.emplace_back(DirectEstimator::light, "light (solid angle)");
+    for (const auto& [estimator, name] : series) {
+      const LightingScene& sampled = std::string(name) == "light (solid angle)" ? solid_angle_scene : scene;
       for (int spp = 1; spp <= 256; spp *= 2) {
         double seconds = 0.0;
-        const Image image = render(scene, camera, estimator, spp, 1, &seconds);
+        const Image image = render(sampled, camera, estimator, spp, 1, &seconds);
         const double error = rmse(image, truth);
         csv << setup.name << "," << name << "," << spp << "," << seconds << "," << error << "\n";
-        if (spp == 256) std::printf("  %-8s 256 spp: %.3f s, RMSE %.5f\n", name, seconds, error);
+        if (spp == 256) std::printf("  %-19s 256 spp: %.3f s, RMSE %.5f\n", name, seconds, error);
       }
     }
   }

@@ -124,7 +124,7 @@ def accel_build_vs_trace(charts):
 
 
 ESTIMATOR_STYLE = {"uniform": ("v-", "tab:gray"), "cosine": ("s-", "tab:olive"), "brdf": ("^-", "tab:blue"),
-                   "light": ("o-", "tab:red")}
+                   "light": ("o-", "tab:red"), "light (solid angle)": ("D--", "tab:purple")}
 
 
 def direct_error_vs_time(charts):
@@ -140,7 +140,7 @@ def direct_error_vs_time(charts):
         ax.grid(True, which="both", alpha=0.3)
     axes[0].set_ylabel("RMSE against the converged reference")
     axes[0].legend(fontsize=8)
-    fig.suptitle("Stage 4: direct lighting, error against time for four estimators")
+    fig.suptitle("Stage 4: direct lighting, error against time for four estimators (light: rectangle by area or solid angle)")
     fig.tight_layout()
     fig.savefig(charts / "stage4-direct-error-vs-time.png", dpi=110)
     plt.close(fig)

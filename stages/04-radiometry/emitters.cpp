@@ -1,6 +1,7 @@
 #include "04-radiometry/emitters.h"
 
 #include "04-radiometry/radiometry.h"
+#include "04-radiometry/spherical_rectangle.h"
 #include "04-radiometry/warp.h"
 #include "common/emission.h"
 #include "common/frame.h"
@@ -43,6 +44,37 @@ EmitterSample TriangleEmitter::sample(Vec3 x, Vec2 u) const {
 }
 
 float TriangleEmitter::pdf(Vec3 x, Vec3 y) const { return area_pdf_as_solid_angle(x, y, normal(), 1.0f / area()); }
+
+namespace {
+
+// x sees the rectangle's emitting side.
+bool in_front_of(const RectangleEmitter& r, Vec3 x) {
+  return glm::dot(glm::cross(r.edge_u, r.edge_v), x - r.corner) > 0.0f;
+}
+
+}  // namespace
+
+EmitterSample RectangleEmitter::sample(Vec3 x, Vec2 u) const {
+  if (!in_front_of(*this, x)) return EmitterSample{corner, Vec3(0.0f), 0.0f, 0.0f};
+  if (strategy == RectangleSampling::solid_angle) {
+    const SphericalRectangle seen(x, corner, edge_u, edge_v);
+    if (seen.solid_angle() >= kMinSolidAngle) {
+      const Vec3 y = seen.sample(u);
+      const float distance = glm::length(y - x);
+      return EmitterSample{y, (y - x) / distance, distance, 1.0f / seen.solid_angle()};
+    }
+  }
+  return towards(x, corner + u.x * edge_u + u.y * edge_v, normal(), 1.0f / area());
+}
+
+float RectangleEmitter::pdf(Vec3 x, Vec3 y) const {
+  if (!in_front_of(*this, x)) return 0.0f;
+  if (strategy == RectangleSampling::solid_angle) {
+    const float solid_angle = SphericalRectangle(x, corner, edge_u, edge_v).solid_angle();
+    if (solid_angle >= kMinSolidAngle) return 1.0f / solid_angle;
+  }
+  return area_pdf_as_solid_angle(x, y, normal(), 1.0f / area());
+}
 
 EmitterSample DiskEmitter::sample(Vec3 x, Vec2 u) const {
   const Frame frame = Frame::from_normal(normal);
@@ -100,6 +132,7 @@ float SphereEmitter::pdf(Vec3 x, Vec3 y) const {
 
 Vec3 AreaEmitter::normal_at(Vec3 y) const {
   if (const auto* t = std::get_if<TriangleEmitter>(&geometry)) return t->normal();
+  if (const auto* r = std::get_if<RectangleEmitter>(&geometry)) return r->normal();
   if (const auto* d = std::get_if<DiskEmitter>(&geometry)) return d->normal;
   return glm::normalize(std::get<SphereEmitter>(geometry).normal_at(y));
 }

@@ -44,6 +44,32 @@ struct DiskEmitter {
   float pdf(Vec3 x, Vec3 y) const;
 };
 
+enum class RectangleSampling {
+  area,         // uniform over the area, the lecture's method: p_w varies with distance and tilt
+  solid_angle,  // uniform over the solid angle it subtends (04-radiometry/spherical_rectangle.h)
+};
+
+// A rectangle corner + s edge_u + t edge_v, (s, t) in [0, 1]^2, with perpendicular edges: a quad
+// light such as the Cornell box's, as one emitter (its geometry in the BVH stays two triangles).
+// Its front is edge_u x edge_v.
+struct RectangleEmitter {
+  Vec3 corner, edge_u, edge_v;
+  RectangleSampling strategy = RectangleSampling::area;
+
+  float area() const { return glm::length(glm::cross(edge_u, edge_v)); }
+  Vec3 normal() const { return glm::normalize(glm::cross(edge_u, edge_v)); }
+  // By solid angle where x sees the front and the rectangle subtends at least kMinSolidAngle;
+  // otherwise by area. From behind, the rectangle emits nothing towards x: no sample (pdf 0).
+  EmitterSample sample(Vec3 x, Vec2 u) const;
+  float pdf(Vec3 x, Vec3 y) const;
+
+  // Below this, far away or seen edge-on, the solid angle keeps fewer digits (its set-up is in
+  // double, but x's coordinates in the rectangle's frame are rounded to float: measured, S is good
+  // to 1e-6 sr, a relative 1e-4 here), and area sampling is as good anyway: the light is nearly a
+  // point, whose 1/r^2 hardly varies over it.
+  static constexpr float kMinSolidAngle = 0.01f;
+};
+
 enum class SphereSampling {
   area,  // uniform over the whole sphere, p_A = 1 / (4 pi r^2): half the samples land on the far side
   cone,  // uniform over the cone of directions the sphere subtends from x (from outside it)
@@ -65,7 +91,7 @@ struct SphereEmitter {
 
 // One emitting surface and its radiance; `shape` is its index in the scene file.
 struct AreaEmitter {
-  std::variant<TriangleEmitter, DiskEmitter, SphereEmitter> geometry;
+  std::variant<TriangleEmitter, RectangleEmitter, DiskEmitter, SphereEmitter> geometry;
   Color radiance;
   int shape = -1;
 

@@ -21,6 +21,19 @@ const SceneDescription& with_lighting_materials(const SceneDescription& descript
   return description;
 }
 
+// A quad that is a rectangle: its opposite sides equal and its corners right angles, each to a
+// relative 1e-5 (a scene file's decimals), as corner + s edge_u + t edge_v.
+std::optional<RectangleEmitter> rectangle_of(const Quad& quad, RectangleSampling strategy) {
+  const auto& v = quad.vertices;
+  const Vec3 edge_u = v[1] - v[0], edge_v = v[3] - v[0];
+  const float lu = glm::length(edge_u), lv = glm::length(edge_v);
+  const float tolerance = 1e-5f * std::max(lu, lv);
+  if (!(lu > 0.0f && lv > 0.0f) || glm::length(v[2] - (v[1] + edge_v)) > tolerance ||
+      std::abs(glm::dot(edge_u, edge_v)) > tolerance * std::min(lu, lv))
+    return std::nullopt;
+  return RectangleEmitter{v[0], edge_u, edge_v, strategy};
+}
+
 }  // namespace
 
 LightingScene::LightingScene(const SceneDescription& description, const LightingOptions& options,
@@ -30,14 +43,20 @@ LightingScene::LightingScene(const SceneDescription& description, const Lighting
                                   : bvh_aggregate_factory<LightingPrimitives>(BvhBuildOptions{.wide = true}),
                    "stage 4 renders spheres, planes, triangles, quads, meshes and disks (tori are stage 1's "
                    "implicit surfaces)") {
-  first_emitter_.assign(description.shapes.size(), -1);
+  shape_emitters_.assign(description.shapes.size(), ShapeEmitters{});
   for (size_t i = 0; i < description.shapes.size(); ++i) {
     const Shape& shape = description.shapes[i];
     const Color le = description.materials[size_t(shape.material)].emission;
     if (max_component(le) <= 0.0f) continue;
-    first_emitter_[i] = int(emitters_.size());
+    shape_emitters_[i].first = int(emitters_.size());
     auto add = [&](auto geometry) { emitters_.push_back(AreaEmitter{geometry, le, int(i)}); };
-    if (const auto* sphere = std::get_if<Sphere>(&shape.geometry))
+    const auto* quad = std::get_if<Quad>(&shape.geometry);
+    const std::optional<RectangleEmitter> rectangle =
+        quad ? rectangle_of(*quad, options.rectangle_sampling) : std::nullopt;
+    if (rectangle) {
+      add(*rectangle);
+      shape_emitters_[i].whole = true;
+    } else if (const auto* sphere = std::get_if<Sphere>(&shape.geometry))
       add(SphereEmitter{sphere->center, sphere->radius, options.sphere_sampling});
     else if (const auto* disk = std::get_if<Disk>(&shape.geometry))
       add(DiskEmitter{disk->center, disk->normal, disk->radius});
@@ -64,10 +83,10 @@ LightingScene::LightingScene(const SceneDescription& description, const Lighting
 }
 
 int LightingScene::emitter_index(const Hit& hit) const {
-  if (hit.primitive < 0 || size_t(hit.primitive) >= first_emitter_.size()) return -1;
-  const int first = first_emitter_[size_t(hit.primitive)];
-  if (first < 0) return -1;
-  return first + std::max(0, hit.triangle);
+  if (hit.primitive < 0 || size_t(hit.primitive) >= shape_emitters_.size()) return -1;
+  const ShapeEmitters& e = shape_emitters_[size_t(hit.primitive)];
+  if (e.first < 0) return -1;
+  return e.whole ? e.first : e.first + std::max(0, hit.triangle);
 }
 
 }  // namespace rt

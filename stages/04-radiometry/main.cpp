@@ -1,6 +1,7 @@
 // stage4: renders a scene's direct lighting by Monte Carlo integration, with one of four estimators.
 #include "01-ray-casting/render.h"
 #include "04-radiometry/direct_lighting.h"
+#include "04-radiometry/light_sampling_flags.h"
 
 #include <map>
 
@@ -26,14 +27,15 @@ int main(int argc, char** argv) {
                        "How sphere lights are sampled: cone (the directions they subtend, default) or area")
             ->transform(CLI::CheckedTransformer(std::map<std::string, SphereSampling>{
                 {"cone", SphereSampling::cone}, {"area", SphereSampling::area}}));
+        add_rectangle_sampling_flag(app, lighting);
       },
       [&] {
         const SceneDescription description = load_scene(options.scene);
         const RenderSettings settings = options.settings_for(description);
         direct.max_depth = settings.max_depth;
         const LightingScene scene(description, lighting);
-        std::printf("stage4: %zu area emitters, %zu point lights\n", scene.emitters().size(),
-                    scene.lights().size());
+        std::printf("stage4: %zu area emitter%s, %zu point light%s\n", scene.emitters().size(),
+                    scene.emitters().size() == 1 ? "" : "s", scene.lights().size(), scene.lights().size() == 1 ? "" : "s");
         const PinholeCamera camera(description.camera, settings.width, settings.height);
         render_and_write("stage4", options, description, settings, camera, PixelMeaning::radiance,
                          [&](const Ray& ray, Sampler& rng) { return direct_radiance(scene, ray, direct, rng); });

@@ -1,5 +1,6 @@
 // stage5: renders a scene by Monte Carlo path tracing with one of the lecture's integrators.
 #include "01-ray-casting/render.h"
+#include "04-radiometry/light_sampling_flags.h"
 #include "05-path-tracing/path_render.h"
 
 #include <map>
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
             ->transform(CLI::CheckedTransformer(std::map<std::string, SamplerKind>{
                 {sampler_name(SamplerKind::independent), SamplerKind::independent},
                 {sampler_name(SamplerKind::sobol), SamplerKind::sobol}}));
+        add_rectangle_sampling_flag(app, lighting);
       },
       [&] {
         const SceneDescription description = load_scene(options.scene);

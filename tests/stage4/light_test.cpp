@@ -222,7 +222,7 @@ TEST(LightingScene, FindsDisksAndNamesEmitters) {
                {"type": "disk", "material": "light", "center": [0, 1, 0], "normal": [0, -1, 0], "radius": 0.5},
                {"type": "quad", "material": "light", "vertices": [[-1, 3, -1], [-1, 3, 1], [1, 3, 1], [1, 3, -1]]}]})";
   const LightingScene scene(parse_scene(json, "disk.json"));
-  ASSERT_EQ(scene.emitters().size(), 3u);  // the disk, and the quad's two triangles
+  ASSERT_EQ(scene.emitters().size(), 2u);  // the disk, and the square quad as one rectangle
   const auto up = scene.closest_hit(Ray{Vec3(0.1f, 0, 0), Vec3(0, 1, 0)}, Interval::positive());
   ASSERT_TRUE(up);
   EXPECT_EQ(up->primitive, 1);
@@ -233,7 +233,13 @@ TEST(LightingScene, FindsDisksAndNamesEmitters) {
   const auto beside = scene.closest_hit(Ray{Vec3(0.7f, 0, 0), Vec3(0, 1, 0)}, Interval::positive());
   ASSERT_TRUE(beside);
   EXPECT_EQ(beside->primitive, 2);
-  EXPECT_GE(scene.emitter_index(*beside), 1);
+  EXPECT_EQ(scene.emitter_index(*beside), 1);
+  EXPECT_TRUE(std::holds_alternative<RectangleEmitter>(scene.emitters()[1].geometry));
+  // Both of the rectangle's triangles are the one emitter.
+  const auto other_half = scene.closest_hit(Ray{Vec3(-0.7f, 0, 0.5f), Vec3(0, 1, 0)}, Interval::positive());
+  ASSERT_TRUE(other_half);
+  EXPECT_NE(other_half->triangle, beside->triangle);
+  EXPECT_EQ(scene.emitter_index(*other_half), 1);
   const auto down = scene.closest_hit(Ray{Vec3(0, 0, 0), Vec3(0, -1, 0)}, Interval::positive());
   ASSERT_TRUE(down);
   EXPECT_EQ(down->primitive, 0);  // the shape's index in the file, whatever its kind

@@ -21,7 +21,7 @@ TEST(Furnace, EveryIntegratorFindsLeOverOneMinusRho) {
   for (const Vec3 d : {Vec3(0, 0, 1), glm::normalize(Vec3(1, 1, 1)), glm::normalize(Vec3(0.3f, -1, 0.01f))})
     for (const PathIntegrator i : kPathIntegrators) {
       options.integrator = i;
-      const Estimate e = estimate(scene, Ray{Vec3(0.1f, 0.2f, -0.3f), d}, options, 20000);
+      const Estimate e = estimate(scene, Ray{Vec3(0.1f, 0.2f, -0.3f), d}, options, 30000);
       const double exact = i == PathIntegrator::naive ? 0.5 * (1.0 - std::pow(0.5, 6)) / 0.5 : 1.0;
       EXPECT_NEAR(e.mean, exact, 4.0 * e.standard_error + 1e-5) << integrator_name(i);
       EXPECT_LT(e.standard_error, 0.02) << integrator_name(i);  // 2% of the answer, as in stage 4
