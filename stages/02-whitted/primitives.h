@@ -59,7 +59,7 @@ struct PrimitiveRun {
 // compares of constants, which the compiler turns into a switch: each kind's function is then a
 // direct (usually inlined) call.
 template <size_t N, size_t K = 0, class F>
-decltype(auto) visit_kind(size_t kind, F&& f) {
+[[gnu::always_inline]] inline decltype(auto) visit_kind(size_t kind, F&& f) {
   if constexpr (K + 1 == N) {
     return f(std::integral_constant<size_t, K>{});
   } else {

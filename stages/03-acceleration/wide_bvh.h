@@ -9,6 +9,8 @@
 
 #include "03-acceleration/bvh.h"
 
+#include <cstring>
+
 namespace rt {
 
 struct alignas(64) WideBvhNode {
@@ -32,37 +34,49 @@ struct WideBvh {
 // leaves and the primitive order (Bvh::order) are the binary tree's.
 WideBvh collapse_to_wide(const Bvh& bvh);
 
-// The slab test (stage3.aabb.slab) on a node's four boxes at once. t_enter[i] is child i's entry
-// distance; hit[i] is nonzero when the ray meets box i within `range`.
-inline void intersect_wide_node(const WideBvhNode& node, const RayInverse& ray, Interval range, float* __restrict t_enter,
-                                int* __restrict hit) {
+// Four floats as one SSE register (GCC's vector extensions: +, -, * and comparisons act lane by
+// lane, and `c ? a : b` with a lane mask c picks per lane), so the four-box test below is written
+// once, for all lanes, and compiles to one instruction per line.
+using Float4 = float __attribute__((vector_size(16)));
+
+inline Float4 load4(const float* p) {
+  Float4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// The slab test (stage3.aabb.slab) on a node's four boxes at once. Returns a bit per child, set
+// when the ray meets its box within `range`; t_enter[i] is child i's entry distance.
+[[gnu::always_inline]] inline unsigned intersect_wide_node(const WideBvhNode& node, const RayInverse& ray, Interval range,
+                                                           float* __restrict t_enter) {
   // The sign of 1/d picks each axis's near and far plane for all four boxes alike.
-  const float* near_x = ray.negative[0] ? node.hi[0] : node.lo[0];
-  const float* far_x = ray.negative[0] ? node.lo[0] : node.hi[0];
-  const float* near_y = ray.negative[1] ? node.hi[1] : node.lo[1];
-  const float* far_y = ray.negative[1] ? node.lo[1] : node.hi[1];
-  const float* near_z = ray.negative[2] ? node.hi[2] : node.lo[2];
-  const float* far_z = ray.negative[2] ? node.lo[2] : node.hi[2];
-  const float ox = ray.origin.x, oy = ray.origin.y, oz = ray.origin.z;
-  const float ix = ray.inv_direction.x, iy = ray.inv_direction.y, iz = ray.inv_direction.z;
-  // Written lane by lane, with NaN-ignoring max/min as in intersect_aabb; the compiler runs the
-  // four lanes as one SSE instruction each (once it has unrolled the loop it no longer does, hence
-  // the pragma).
-#pragma GCC unroll 1
-  for (int i = 0; i < WideBvhNode::kWidth; ++i) {
-    const float near_tx = (near_x[i] - ox) * ix, far_tx = (far_x[i] - ox) * ix * kSlabRounding;
-    const float near_ty = (near_y[i] - oy) * iy, far_ty = (far_y[i] - oy) * iy * kSlabRounding;
-    const float near_tz = (near_z[i] - oz) * iz, far_tz = (far_z[i] - oz) * iz * kSlabRounding;
-    float enter = range.min, exit = range.max;
-    enter = near_tx > enter ? near_tx : enter;
-    enter = near_ty > enter ? near_ty : enter;
-    enter = near_tz > enter ? near_tz : enter;
-    exit = far_tx < exit ? far_tx : exit;
-    exit = far_ty < exit ? far_ty : exit;
-    exit = far_tz < exit ? far_tz : exit;
-    t_enter[i] = enter;
-    hit[i] = enter <= exit ? -1 : 0;
-  }
+  const Float4 near_x = load4(ray.negative[0] ? node.hi[0] : node.lo[0]);
+  const Float4 far_x = load4(ray.negative[0] ? node.lo[0] : node.hi[0]);
+  const Float4 near_y = load4(ray.negative[1] ? node.hi[1] : node.lo[1]);
+  const Float4 far_y = load4(ray.negative[1] ? node.lo[1] : node.hi[1]);
+  const Float4 near_z = load4(ray.negative[2] ? node.hi[2] : node.lo[2]);
+  const Float4 far_z = load4(ray.negative[2] ? node.lo[2] : node.hi[2]);
+  const Float4 near_tx = (near_x - ray.origin.x) * ray.inv_direction.x;
+  const Float4 near_ty = (near_y - ray.origin.y) * ray.inv_direction.y;
+  const Float4 near_tz = (near_z - ray.origin.z) * ray.inv_direction.z;
+  const Float4 far_tx = (far_x - ray.origin.x) * ray.inv_direction.x * kSlabRounding;
+  const Float4 far_ty = (far_y - ray.origin.y) * ray.inv_direction.y * kSlabRounding;
+  const Float4 far_tz = (far_z - ray.origin.z) * ray.inv_direction.z * kSlabRounding;
+  // As in intersect_aabb: "new > old ? new : old", so a NaN lane (0 * inf) leaves the interval.
+  Float4 enter = Float4{} + range.min, exit = Float4{} + range.max;
+  enter = near_tx > enter ? near_tx : enter;
+  enter = near_ty > enter ? near_ty : enter;
+  enter = near_tz > enter ? near_tz : enter;
+  exit = far_tx < exit ? far_tx : exit;
+  exit = far_ty < exit ? far_ty : exit;
+  exit = far_tz < exit ? far_tz : exit;
+  std::memcpy(t_enter, &enter, sizeof enter);
+  const auto inside = enter <= exit;  // all bits set in the lanes whose box is hit
+#if defined(__SSE__)
+  return unsigned(__builtin_ia32_movmskps(reinterpret_cast<Float4>(inside)));  // the lanes' sign bits
+#else
+  return unsigned(inside[0] & 1) | unsigned(inside[1] & 2) | unsigned(inside[2] & 4) | unsigned(inside[3] & 8);
+#endif
 }
 
 // The contracts of bvh_closest_hit and bvh_any_hit (bvh.h), over the wide tree.
@@ -92,18 +106,18 @@ std::optional<std::pair<float, std::uint32_t>> wide_bvh_closest_hit(const WideBv
     if (current.count == 0) {
       const WideBvhNode& node = bvh.nodes[current.child];
       float t[4];
-      int hit[4];
-      intersect_wide_node(node, inverse, range, t, hit);
-      // The children the ray enters, nearest first (insertion sort of at most four).
-      WideBvhEntry entered[4];
-      int n = 0;
-      for (int i = 0; i < WideBvhNode::kWidth; ++i) {
-        if (!hit[i]) continue;
-        int k = n++;
-        for (; k > 0 && entered[k - 1].t > t[i]; --k) entered[k] = entered[k - 1];
-        entered[k] = WideBvhEntry{node.child[i], node.count[i], t[i]};
-      }
-      if (n > 0) {
+      unsigned hits = intersect_wide_node(node, inverse, range, t);
+      if (hits != 0) {
+        // The children the ray enters, nearest first (insertion sort of at most four), taken
+        // bit by bit from the mask: the usual case, one or two children, costs one or two steps.
+        WideBvhEntry entered[4];
+        int n = 0;
+        for (; hits != 0; hits &= hits - 1) {
+          const int i = __builtin_ctz(hits);
+          int k = n++;
+          for (; k > 0 && entered[k - 1].t > t[i]; --k) entered[k] = entered[k - 1];
+          entered[k] = WideBvhEntry{node.child[i], node.count[i], t[i]};
+        }
         for (int k = n - 1; k >= 1; --k) stack[stack_size++] = entered[k];
         current = entered[0];
         continue;
@@ -133,10 +147,10 @@ bool wide_bvh_any_hit(const WideBvh& bvh, const Ray& ray, Interval range, HitsPr
     if (current.count == 0) {
       const WideBvhNode& node = bvh.nodes[current.child];
       float t[4];
-      int hit[4];
-      intersect_wide_node(node, inverse, range, t, hit);
-      for (int i = 0; i < WideBvhNode::kWidth; ++i)
-        if (hit[i]) stack[stack_size++] = WideBvhEntry{node.child[i], node.count[i], t[i]};
+      for (unsigned hits = intersect_wide_node(node, inverse, range, t); hits != 0; hits &= hits - 1) {
+        const int i = __builtin_ctz(hits);
+        stack[stack_size++] = WideBvhEntry{node.child[i], node.count[i], t[i]};
+      }
     } else {
       for (std::uint32_t slot = current.child; slot < current.child + current.count; ++slot)
         if (hits_primitive(slot, range)) return true;
