@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
       const auto start = Clock::now();
       const BvhAggregate bvh(set, o);
       const double build_ms = seconds_since(start) * 1e3;
-      measure(split_method_name(split), bvh, build_ms, bvh.bvh().stats().sah_cost);
+      measure(split_method_name(split), bvh, build_ms, bvh.stats().sah_cost);
     }
     {
       BvhBuildOptions o;
@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
       const auto start = Clock::now();
       const BvhAggregate bvh(set, o);
       const double build_ms = seconds_since(start) * 1e3;
-      measure("sah-wide", bvh, build_ms, bvh.bvh().stats().sah_cost);
+      measure("sah-wide", bvh, build_ms, bvh.stats().sah_cost);
     }
 #if RT_HAVE_EMBREE
     const auto start = Clock::now();

@@ -72,8 +72,12 @@ class BvhAggregate : public Aggregate {
   std::optional<PrimitiveHit> closest_hit(const Ray& ray, Interval range) const override;
   bool occluded(const Ray& ray, Interval range) const override;
 
+  // The binary tree; empty once collapsed into the 4-wide one, which is then all the traversal reads.
   const Bvh& bvh() const { return bvh_; }
   const std::optional<WideBvh>& wide_bvh() const { return wide_; }
+  // The binary tree's figures, taken before a collapse released it.
+  const BvhStats& stats() const { return stats_; }
+  size_t size() const { return flat_.size(); }
   // Memory of the acceleration structure: nodes, leaf order and the slots' copied primitives.
   size_t bytes() const {
     return bvh_.nodes.size() * sizeof(BvhNode) + (wide_ ? wide_->nodes.size() * sizeof(WideBvhNode) : 0) +
@@ -83,6 +87,7 @@ class BvhAggregate : public Aggregate {
  private:
   FlatPrimitives<Set> flat_;
   Bvh bvh_;
+  BvhStats stats_;
   std::optional<WideBvh> wide_;  // when built with BvhBuildOptions::wide
 };
 template <class Set>
@@ -153,8 +158,14 @@ BvhAggregate<Set>::BvhAggregate(std::shared_ptr<const Set> primitives, const Bvh
   bounds.reserve(flat_.size());
   for (size_t slot = 0; slot < flat_.size(); ++slot) bounds.push_back(flat_.bounds(slot));
   bvh_ = build_bvh(bounds, options);
+  stats_ = bvh_.stats();
   flat_.reorder(bvh_.order);  // slot = leaf slot from here on
-  if (options.wide) wide_ = collapse_to_wide(bvh_);
+  if (options.wide) {
+    wide_ = collapse_to_wide(bvh_);
+    // The wide tree holds its own boxes and leaves: the binary nodes (a third of the memory on the
+    // bunny) and the leaf order are not read again.
+    bvh_ = Bvh{};
+  }
 }
 
 template <class Set>

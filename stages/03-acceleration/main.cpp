@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
         const size_t spheres = SphereKind::size(scene.primitives().store_of<SphereKind>());
         std::printf("stage3: %zu triangles, %zu spheres; accelerator %s", triangles, spheres, accel_name.c_str());
         if (const auto* bvh = dynamic_cast<const BvhAggregate<WhittedPrimitives>*>(&counter->inner())) {
-          const BvhStats s = bvh->bvh().stats();
+          const BvhStats s = bvh->stats();
           const TriangleKind::Store& store = scene.primitives().store_of<TriangleKind>();
           size_t mesh_bytes = store.mesh_of.size() * sizeof(store.mesh_of[0]);
           for (const Placed<TriangleMesh>& m : store.meshes)

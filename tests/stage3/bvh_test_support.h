@@ -127,7 +127,7 @@ inline void expect_same_answers(const Aggregate& reference, const Aggregate& tes
 // primitive tested) fails here at once, naming the tasks, instead of after minutes of brute force.
 inline ::testing::AssertionResult tree_culls(const BvhAggregate<Primitives>& bvh, const Primitives& set,
                                             double max_share = 0.3) {
-  const size_t primitives = bvh.bvh().order.size();
+  const size_t primitives = bvh.size();
   size_t tested = 0;
   auto count = [&](std::uint32_t, Interval) {
     ++tested;
