@@ -1,25 +1,6 @@
 #include "05-path-tracing/sobol_sampler.h"
 
-#include "common/task.h"
-
 namespace rt {
-
-std::uint32_t SobolSampler::laine_karras(std::uint32_t x, std::uint32_t seed) {
-  // BEGIN TASK stage5.sampler.owen_scramble
-  // Laine and Karras's hash with Burley's constants (JCGT 9(4), 2020, listing 2): each
-  // multiplication by an even constant only carries bits upwards, so bit k ends up depending on
-  // bits 0..k and the seed: a nested uniform scramble in reversed-bit order.
-  x += seed;
-  x ^= x * 0x6c50b47cu;
-  x ^= x * 0xb82f1e52u;
-  x ^= x * 0xc7afe638u;
-  x ^= x * 0x8d22f6e6u;
-  return x;
-  // PLACEHOLDER
-  // report_unfinished_task("stage5.sampler.owen_scramble");
-  // return x ^ seed;  // a random digital shift: still unbiased, less well stratified
-  // END TASK
-}
 
 const SobolSampler::Tables& SobolSampler::dimension1_tables() {
   static const Tables tables = [] {

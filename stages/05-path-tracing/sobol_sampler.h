@@ -16,6 +16,7 @@
 
 #include "common/math.h"
 #include "common/random.h"
+#include "common/task.h"
 
 #include <array>
 #include <cstdint>
@@ -59,6 +60,7 @@ class SobolSampler final : public Sampler {
   static std::uint32_t scramble(std::uint32_t x, std::uint32_t seed) {
     return reverse_bits(laine_karras(reverse_bits(x), seed));
   }
+  // Defined at the end of this header, so that uniform2() compiles its three calls in.
   static std::uint32_t laine_karras(std::uint32_t x, std::uint32_t seed);
 
   static std::uint32_t reverse_bits(std::uint32_t x) {
@@ -96,5 +98,22 @@ class SobolSampler final : public Sampler {
   std::uint32_t reversed_index_;
   std::uint32_t call_ = 0;
 };
+
+inline std::uint32_t SobolSampler::laine_karras(std::uint32_t x, std::uint32_t seed) {
+  // BEGIN TASK stage5.sampler.owen_scramble
+  // Laine and Karras's hash with Burley's constants (JCGT 9(4), 2020, listing 2): each
+  // multiplication by an even constant only carries bits upwards, so bit k ends up depending on
+  // bits 0..k and the seed: a nested uniform scramble in reversed-bit order.
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+  // PLACEHOLDER
+  // report_unfinished_task("stage5.sampler.owen_scramble");
+  // return x ^ seed;  // a random digital shift: still unbiased, less well stratified
+  // END TASK
+}
 
 }  // namespace rt
