@@ -9,6 +9,7 @@
 #include "02-whitted/ray_offset.h"
 #include "common/interval.h"
 #include "common/ray.h"
+#include "common/task.h"
 
 #include <optional>
 #include <utility>
