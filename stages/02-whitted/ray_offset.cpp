@@ -71,8 +71,8 @@ Vec3 offset_ray_origin(const Hit& hit, Vec3 direction, const OffsetPolicy& polic
       const Vec3 offset = d * n;
       Vec3 origin = hit.point + offset;
       for (int i = 0; i < 3; ++i) {
-        if (offset[i] > 0.0f) origin[i] = std::nextafter(origin[i], kInfinity);
-        else if (offset[i] < 0.0f) origin[i] = std::nextafter(origin[i], -kInfinity);
+        if (offset[i] > 0.0f) origin[i] = next_float_up(origin[i]);
+        else if (offset[i] < 0.0f) origin[i] = next_float_down(origin[i]);
       }
       return origin;
       // PLACEHOLDER
