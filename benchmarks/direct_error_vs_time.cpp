@@ -12,7 +12,6 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
-#include <utility>
 #include <string>
 #include <vector>
 
@@ -63,10 +62,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: direct_error_vs_time OUT.csv\n");
     return 2;
   }
-  const std::vector<std::pair<DirectEstimator, const char*>> names{{DirectEstimator::uniform_hemisphere, "uniform"},
-                                                                   {DirectEstimator::cosine_hemisphere, "cosine"},
-                                                                   {DirectEstimator::brdf, "brdf"},
-                                                                   {DirectEstimator::light, "light"}};
   std::ofstream csv(argv[1]);
   csv << "scene,estimator,spp,seconds,rmse\n";
   for (const Setup setup : {Setup{"small light", "assets/scenes/direct-small-light.json"},
@@ -79,10 +74,17 @@ int main(int argc, char** argv) {
     const PinholeCamera camera(description.camera, kWidth, kHeight);
     const Image truth = reference(scene, camera);
     std::printf("%s (reference: light sampling, %d spp)\n", setup.name, kReferenceSpp);
-    auto series = names;
-    series.emplace_back(DirectEstimator::light, "light (solid angle)");
-    for (const auto& [estimator, name] : series) {
-      const LightingScene& sampled = std::string(name) == "light (solid angle)" ? solid_angle_scene : scene;
+    struct Series {
+      DirectEstimator estimator;
+      const char* name;
+      const LightingScene& sampled;  // the scene as built for this series' light sampling
+    };
+    for (const Series& series : {Series{DirectEstimator::uniform_hemisphere, "uniform", scene},
+                                 Series{DirectEstimator::cosine_hemisphere, "cosine", scene},
+                                 Series{DirectEstimator::brdf, "brdf", scene},
+                                 Series{DirectEstimator::light, "light", scene},
+                                 Series{DirectEstimator::light, "light (solid angle)", solid_angle_scene}}) {
+      const auto& [estimator, name, sampled] = series;
       for (int spp = 1; spp <= 256; spp *= 2) {
         double seconds = 0.0;
         const Image image = render(sampled, camera, estimator, spp, 1, &seconds);

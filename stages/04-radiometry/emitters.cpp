@@ -45,17 +45,11 @@ EmitterSample TriangleEmitter::sample(Vec3 x, Vec2 u) const {
 
 float TriangleEmitter::pdf(Vec3 x, Vec3 y) const { return area_pdf_as_solid_angle(x, y, normal(), 1.0f / area()); }
 
-namespace {
-
-// x sees the rectangle's emitting side.
-bool in_front_of(const RectangleEmitter& r, Vec3 x) {
-  return glm::dot(glm::cross(r.edge_u, r.edge_v), x - r.corner) > 0.0f;
-}
-
-}  // namespace
-
+// Both start from edge_u x edge_v, the emitting side's normal scaled by the area: x is in front
+// when it lies on that side of the plane.
 EmitterSample RectangleEmitter::sample(Vec3 x, Vec2 u) const {
-  if (!in_front_of(*this, x)) return EmitterSample{corner, Vec3(0.0f), 0.0f, 0.0f};
+  const Vec3 front = glm::cross(edge_u, edge_v);
+  if (!(glm::dot(front, x - corner) > 0.0f)) return EmitterSample{corner, Vec3(0.0f), 0.0f, 0.0f};
   if (strategy == RectangleSampling::solid_angle) {
     const SphericalRectangle seen(x, corner, edge_u, edge_v);
     if (seen.solid_angle() >= kMinSolidAngle) {
@@ -64,16 +58,17 @@ EmitterSample RectangleEmitter::sample(Vec3 x, Vec2 u) const {
       return EmitterSample{y, (y - x) / distance, distance, 1.0f / seen.solid_angle()};
     }
   }
-  return towards(x, corner + u.x * edge_u + u.y * edge_v, normal(), 1.0f / area());
+  return towards(x, corner + u.x * edge_u + u.y * edge_v, glm::normalize(front), 1.0f / glm::length(front));
 }
 
 float RectangleEmitter::pdf(Vec3 x, Vec3 y) const {
-  if (!in_front_of(*this, x)) return 0.0f;
+  const Vec3 front = glm::cross(edge_u, edge_v);
+  if (!(glm::dot(front, x - corner) > 0.0f)) return 0.0f;
   if (strategy == RectangleSampling::solid_angle) {
     const float solid_angle = SphericalRectangle(x, corner, edge_u, edge_v).solid_angle();
     if (solid_angle >= kMinSolidAngle) return 1.0f / solid_angle;
   }
-  return area_pdf_as_solid_angle(x, y, normal(), 1.0f / area());
+  return area_pdf_as_solid_angle(x, y, glm::normalize(front), 1.0f / glm::length(front));
 }
 
 EmitterSample DiskEmitter::sample(Vec3 x, Vec2 u) const {

@@ -12,6 +12,7 @@
 #include "common/frame.h"
 #include "common/random.h"
 #include "closed_form.h"
+#include "emitter_estimates.h"
 
 #include <gtest/gtest.h>
 
@@ -85,29 +86,9 @@ TEST(DiscreteDistribution, ChoosesInProportionToWeight) {
   EXPECT_EQ(d.sample(0.1f).index, 2);  // exactly at the boundary after the zero-weight item
 }
 
-// Monte Carlo estimates of E[g(sample)] with a standard error.
-struct Mean {
-  double value = 0.0, standard_error = 0.0;
-};
-template <class G>
-Mean mean_of(int samples, std::uint64_t seed, G&& g) {
-  Rng rng(seed, 0, 0);
-  double sum = 0.0, sum2 = 0.0;
-  for (int k = 0; k < samples; ++k) {
-    const double v = g(rng);
-    sum += v;
-    sum2 += v * v;
-  }
-  const double m = sum / samples;
-  return {m, std::sqrt(std::max(0.0, sum2 / samples - m * m) / samples)};
-}
-
-// E[cos(theta_x) / p(w)] over the emitter's front-facing samples: the projected solid angle, E / L.
-double projected_solid_angle_sample(const AreaEmitter& e, Vec3 x, Vec3 n, Vec2 u) {
-  const EmitterSample s = e.sample(x, u);
-  if (e.radiance_towards(s.point, x) == Color(0.0f)) return 0.0;
-  return std::max(0.0f, glm::dot(n, s.wi)) / s.pdf;
-}
+using testing::Mean;
+using testing::mean_of;
+using testing::projected_solid_angle_sample;
 
 TEST(EmitterSampling, TriangleReproducesLambertsFormula) {
   const Vec3 x(0.1f, -0.2f, 0.0f), n = glm::normalize(Vec3(0.2f, 0.1f, 1.0f));

@@ -7,6 +7,7 @@
 #include "04-radiometry/radiometry.h"
 #include "04-radiometry/spherical_rectangle.h"
 #include "chi_square.h"
+#include "emitter_estimates.h"
 #include "common/random.h"
 
 #include <gtest/gtest.h>
@@ -95,22 +96,9 @@ TEST(RectangleChiSquare, SolidAngleSamplingIsUniformOverTheSubtendedDirections) 
 }
 
 // E[cos(theta_x) / p] = the projected solid angle, which Lambert's formula gives exactly.
-struct Estimate {
-  double mean, standard_error;
-};
-Estimate projected_solid_angle(const RectangleEmitter& r, Vec3 x, Vec3 n, int samples, std::uint64_t seed) {
+testing::Mean projected_solid_angle(const RectangleEmitter& r, Vec3 x, Vec3 n, int samples, std::uint64_t seed) {
   const AreaEmitter e{r, Color(1.0f)};
-  Rng rng(seed, 0, 0);
-  double sum = 0.0, sum2 = 0.0;
-  for (int k = 0; k < samples; ++k) {
-    const EmitterSample s = e.sample(x, rng.uniform2());
-    double v = 0.0;
-    if (s.pdf > 0.0f && e.radiance_towards(s.point, x) != Color(0.0f)) v = std::max(0.0f, glm::dot(n, s.wi)) / s.pdf;
-    sum += v;
-    sum2 += v * v;
-  }
-  const double mean = sum / samples;
-  return {mean, std::sqrt(std::max(0.0, sum2 / samples - mean * mean) / samples)};
+  return testing::mean_of(samples, seed, [&](Rng& rng) { return testing::projected_solid_angle_sample(e, x, n, rng.uniform2()); });
 }
 
 TEST(RectangleLight, BothStrategiesReproduceLambertsFormulaNearAndFar) {
@@ -129,8 +117,8 @@ TEST(RectangleLight, BothStrategiesReproduceLambertsFormulaNearAndFar) {
     for (const RectangleSampling strategy : {RectangleSampling::area, RectangleSampling::solid_angle}) {
       RectangleEmitter r = kNear;
       r.strategy = strategy;
-      const Estimate m = projected_solid_angle(r, c.x, c.n, 200000, 43);
-      EXPECT_NEAR(m.mean, exact, 4.0 * m.standard_error + 1e-4 * exact) << c.where;
+      const testing::Mean m = projected_solid_angle(r, c.x, c.n, 200000, 43);
+      EXPECT_NEAR(m.value, exact, 4.0 * m.standard_error + 1e-4 * exact) << c.where;
       // Area sampling right under a large light is the case solid angle exists for.
       if (strategy == RectangleSampling::solid_angle || std::string(c.where) != "near") {
         EXPECT_LT(m.standard_error, 0.02 * exact) << c.where;
@@ -146,8 +134,8 @@ TEST(RectangleLight, SolidAngleSamplingRemovesTheVarianceNearTheLight) {
   const Vec3 x(0.4f, 0.23f, 0.1f), n(0, 1, 0);
   RectangleEmitter by_area = kNear;
   by_area.strategy = RectangleSampling::area;
-  const Estimate area = projected_solid_angle(by_area, x, n, 100000, 44);
-  const Estimate solid = projected_solid_angle(kNear, x, n, 100000, 44);
+  const testing::Mean area = projected_solid_angle(by_area, x, n, 100000, 44);
+  const testing::Mean solid = projected_solid_angle(kNear, x, n, 100000, 44);
   EXPECT_LT(solid.standard_error * 5.0, area.standard_error)
       << "area " << area.standard_error << ", solid angle " << solid.standard_error;
 }
