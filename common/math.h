@@ -25,9 +25,16 @@ inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 inline float max_component(Vec3 v) { return std::max({v.x, v.y, v.z}); }
 inline float min_component(Vec3 v) { return std::min({v.x, v.y, v.z}); }
-// v[axis] for an axis known only at run time. GLM's operator[] is a switch (a jump per call);
-// two selects let the compiler use conditional moves instead.
-inline float component(Vec3 v, int axis) { return axis == 0 ? v.x : (axis == 1 ? v.y : v.z); }
+// v[axis] for an axis known only at run time, read as an array element. GLM's operator[] is a
+// switch, and selects (axis == 0 ? v.x : ...) compile to jumps too; the axis changes from ray to
+// ray, so such jumps are often mispredicted (docs/stage5.md, the speed ladder: "branches").
+inline float component(Vec3 v, int axis) {
+  const float c[3] = {v.x, v.y, v.z};
+  return c[axis];
+}
+// |v| per component. std::abs of a float clears the sign bit; glm::abs is written as
+// x >= 0 ? x : -x, which GCC keeps as a compare and a jump on the sign.
+inline Vec3 abs_components(Vec3 v) { return Vec3(std::abs(v.x), std::abs(v.y), std::abs(v.z)); }
 
 inline bool is_finite(Vec3 v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);

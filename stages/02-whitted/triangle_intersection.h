@@ -84,11 +84,15 @@ inline WatertightRay::WatertightRay(const Ray& ray) : origin(ray.origin), direct
   // BEGIN TASK stage2.triangle.shear
   // Permutation: z is the dimension where the direction is largest; x and y follow cyclically,
   // swapped when d_z < 0 so the triangle's winding (and the signs of U, V, W) is kept.
-  const Vec3 abs_d = glm::abs(ray.direction);
-  kz = abs_d.x > abs_d.y ? (abs_d.x > abs_d.z ? 0 : 2) : (abs_d.y > abs_d.z ? 1 : 2);
-  kx = (kz + 1) % 3;
-  ky = (kx + 1) % 3;
-  if (component(ray.direction, kz) < 0.0f) std::swap(kx, ky);
+  // (Integer arithmetic instead of ifs: each ray has its own axes, and jumps on them are often
+  // mispredicted.)
+  const Vec3 abs_d = abs_components(ray.direction);
+  const int x_wins = (abs_d.x > abs_d.y) & (abs_d.x > abs_d.z), y_wins = !x_wins & (abs_d.y > abs_d.z);
+  kz = 2 - 2 * x_wins - y_wins;
+  const int next = (kz + 1) % 3, after = (kz + 2) % 3;
+  const int flip = component(ray.direction, kz) < 0.0f;
+  kx = next + flip * (after - next);
+  ky = after + flip * (next - after);
   // Shear that maps d onto (0, 0, 1): x' = x - (d_x/d_z) z, y' = y - (d_y/d_z) z, z' = z / d_z.
   const float d_kz = component(ray.direction, kz);
   shear_x = component(ray.direction, kx) / d_kz;
@@ -101,8 +105,9 @@ inline WatertightRay::WatertightRay(const Ray& ray) : origin(ray.origin), direct
   // END TASK
 }
 
-inline std::optional<TriangleHit> intersect_triangle_watertight(const WatertightRay& ray, Vec3 v0, Vec3 v1, Vec3 v2,
-                                                                Interval range) {
+[[gnu::always_inline]] inline std::optional<TriangleHit> intersect_triangle_watertight(const WatertightRay& ray,
+                                                                                        Vec3 v0, Vec3 v1, Vec3 v2,
+                                                                                        Interval range) {
   // BEGIN TASK stage2.triangle.watertight
   const int kx = ray.kx, ky = ray.ky, kz = ray.kz;
   const float shear_x = ray.shear_x, shear_y = ray.shear_y, shear_z = ray.shear_z;
@@ -125,7 +130,8 @@ inline std::optional<TriangleHit> intersect_triangle_watertight(const Watertight
   }
   // Inside (from either side) when U, V, W do not have mixed signs; 0 counts as inside, so a ray
   // through an edge or vertex is hit by every triangle that shares it.
-  if ((u < 0.0f || v < 0.0f || w < 0.0f) && (u > 0.0f || v > 0.0f || w > 0.0f)) return std::nullopt;
+  // (| and & instead of || and &&: one branch for the whole test, not up to six.)
+  if (((u < 0.0f) | (v < 0.0f) | (w < 0.0f)) & ((u > 0.0f) | (v > 0.0f) | (w > 0.0f))) return std::nullopt;
   const float det = u + v + w;
   if (det == 0.0f) return std::nullopt;  // zero area in projection: parallel ray or degenerate triangle
 

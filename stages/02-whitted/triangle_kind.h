@@ -33,11 +33,21 @@ struct TriangleKind {
     for (const Vec3& p : corners) box.expand(p);
     return box;
   }
-  static std::optional<PrimitiveHit> intersect(const Store& store, const Hot& v, const TriangleRay& ray,
-                                               Interval range) {
-    const std::optional<TriangleHit> hit = intersect_triangle(store.method, ray, v[0], v[1], v[2], range);
-    if (!hit) return std::nullopt;
-    return PrimitiveHit{hit->t, hit->b1, hit->b2};
+  // Always inlined, so that a BVH's leaf loop holds the whole test (left to itself, GCC stops
+  // inlining it once the watertight test is inlined into it).
+  [[gnu::always_inline]] static std::optional<PrimitiveHit> intersect(const Store& store, const Hot& v,
+                                                                      const TriangleRay& ray, Interval range) {
+    // Each test's result converted on its own branch: merging the two optionals first passes the
+    // hit through memory, written in pieces and read back at once, which stalls the load (a failed
+    // store-to-load forward; docs/stage5.md, the speed ladder).
+    if (store.method == TriangleMethod::watertight) {
+      if (const std::optional<TriangleHit> hit = intersect_triangle_watertight(ray.watertight, v[0], v[1], v[2], range))
+        return PrimitiveHit{hit->t, hit->b1, hit->b2};
+      return std::nullopt;
+    }
+    if (const std::optional<TriangleHit> hit = intersect_triangle_moller_trumbore(ray.ray, v[0], v[1], v[2], range))
+      return PrimitiveHit{hit->t, hit->b1, hit->b2};
+    return std::nullopt;
   }
   // Task stage2.mesh.hit_record (triangle_kind.cpp).
   static Hit hit_record(const Store& store, const PrimitiveHit& found, const Ray& ray);

@@ -26,11 +26,13 @@ class FlatPrimitives {
   // The hit of the primitive in `slot` with t strictly inside `range`.
   std::optional<PrimitiveHit> intersect(size_t slot, const TriangleRay& ray, Interval range) const {
     std::optional<PrimitiveHit> hit = test(slot, ray, range);
-    if (hit) {
-      hit->kind = std::uint8_t(hot_[slot].index());
-      hit->index = index_[slot];
-    }
+    if (hit) name(*hit, slot);
     return hit;
+  }
+  // Fills in which primitive the hit in `slot` is (its kind and index).
+  void name(PrimitiveHit& hit, size_t slot) const {
+    hit.kind = std::uint8_t(hot_[slot].index());
+    hit.index = index_[slot];
   }
   // Whether that primitive is hit at all: the shadow rays' question, which reads no index.
   bool occludes(size_t slot, const TriangleRay& ray, Interval range) const {
@@ -38,8 +40,7 @@ class FlatPrimitives {
   }
   size_t bytes() const { return size() * (sizeof(hot_[0]) + sizeof(index_[0])); }
 
- private:
-  // The slot's kind's own test: t, b1, b2 of its hit.
+  // The slot's kind's own test: t, b1, b2 of its hit (kind and index left unset).
   std::optional<PrimitiveHit> test(size_t slot, const TriangleRay& ray, Interval range) const {
     const typename Set::AnyHot& hot = hot_[slot];
     return visit_kind<Set::kKinds>(hot.index(), [&](auto k) {
@@ -47,6 +48,7 @@ class FlatPrimitives {
     });
   }
 
+ private:
   std::shared_ptr<const Set> set_;
   std::vector<typename Set::AnyHot> hot_;  // per slot
   std::vector<std::uint32_t> index_;       // per slot: the primitive's index within its kind
@@ -170,18 +172,24 @@ BvhAggregate<Set>::BvhAggregate(std::shared_ptr<const Set> primitives, const Bvh
 
 template <class Set>
 std::optional<PrimitiveHit> BvhAggregate<Set>::closest_hit(const Ray& ray, Interval range) const {
-  // The traversal reports hits nearer and nearer, so the last one reported is the nearest.
-  std::optional<PrimitiveHit> nearest;
+  // The traversal reports hits nearer and nearer, so the last one reported is the nearest. Only
+  // its surface parameters are kept, field by field, and which primitive it is comes from the
+  // slot at the end: copying the whole optional hit at every hit stalls on a failed
+  // store-to-load forward (it is written in pieces and read back at once; docs/stage5.md).
+  float b1 = 0.0f, b2 = 0.0f;
   const TriangleRay prepared(ray);
   auto hit_primitive = [&](std::uint32_t slot, Interval r) -> std::optional<float> {
-    const std::optional<PrimitiveHit> hit = flat_.intersect(slot, prepared, r);
+    const std::optional<PrimitiveHit> hit = flat_.test(slot, prepared, r);
     if (!hit) return std::nullopt;
-    nearest = hit;
+    b1 = hit->b1;
+    b2 = hit->b2;
     return hit->t;
   };
   const auto found = wide_ ? wide_bvh_closest_hit(*wide_, ray, range, hit_primitive)
                            : bvh_closest_hit(bvh_, ray, range, hit_primitive);
   if (!found) return std::nullopt;
+  PrimitiveHit nearest{found->first, b1, b2};
+  flat_.name(nearest, found->second);
   return nearest;
 }
 

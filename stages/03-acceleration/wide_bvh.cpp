@@ -46,8 +46,8 @@ class Collapser {
         node.count[i] = child.is_leaf ? child.count : 0u;
       }
       for (int axis = 0; axis < 3; ++axis) {
-        node.lo[axis][i] = box.lo[axis];
-        node.hi[axis][i] = box.hi[axis];
+        node.bounds[0][axis][i] = box.lo[axis];
+        node.bounds[1][axis][i] = box.hi[axis];
       }
     }
     wide_.nodes[index] = node;

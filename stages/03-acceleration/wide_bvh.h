@@ -15,8 +15,10 @@ namespace rt {
 
 struct alignas(64) WideBvhNode {
   static constexpr int kWidth = 4;
-  float lo[3][kWidth];  // [axis][child]; an unused child has an empty box (lo = +inf, hi = -inf),
-  float hi[3][kWidth];  // which the slab test never hits
+  // [side][axis][child], side 0 the low corner and 1 the high one. An unused child has an empty
+  // box (low = +inf, high = -inf), which the slab test never hits. The side is an index so that
+  // a ray picks its near and far planes by its direction's signs without a branch.
+  float bounds[2][3][kWidth];
   std::uint32_t child[kWidth];  // interior child: its node index; leaf child: its first slot in Bvh::order
   std::uint32_t count[kWidth];  // leaf child: its number of primitives; interior or unused child: 0
 };
@@ -24,7 +26,7 @@ static_assert(sizeof(WideBvhNode) == 128, "WideBvhNode must stay two cache lines
 
 struct WideBvh {
   std::vector<WideBvhNode, CacheLineAllocator<WideBvhNode>> nodes;  // nodes[0] is the root
-  Aabb bounds;  // the whole tree's box, tested once per ray
+  Aabb bounds;  // the whole tree's box (the traversal tests the root's four boxes instead)
   // Each visit pushes at most 3 entries, and the tree is no deeper than the binary one.
   static constexpr int kStackSize = 3 * Bvh::kStackSize;
 };
@@ -49,13 +51,12 @@ inline Float4 load4(const float* p) {
 // when the ray meets its box within `range`; t_enter[i] is child i's entry distance.
 [[gnu::always_inline]] inline unsigned intersect_wide_node(const WideBvhNode& node, const RayInverse& ray, Interval range,
                                                            float* __restrict t_enter) {
-  // The sign of 1/d picks each axis's near and far plane for all four boxes alike.
-  const Float4 near_x = load4(ray.negative[0] ? node.hi[0] : node.lo[0]);
-  const Float4 far_x = load4(ray.negative[0] ? node.lo[0] : node.hi[0]);
-  const Float4 near_y = load4(ray.negative[1] ? node.hi[1] : node.lo[1]);
-  const Float4 far_y = load4(ray.negative[1] ? node.lo[1] : node.hi[1]);
-  const Float4 near_z = load4(ray.negative[2] ? node.hi[2] : node.lo[2]);
-  const Float4 far_z = load4(ray.negative[2] ? node.lo[2] : node.hi[2]);
+  // The sign of 1/d picks each axis's near and far plane for all four boxes alike: the near side
+  // is the high one (1) where d < 0. Indexing, not `negative ? hi : lo`, which GCC compiles to a
+  // jump per axis that random directions mispredict half the time.
+  const Float4 near_x = load4(node.bounds[ray.negative[0]][0]), far_x = load4(node.bounds[!ray.negative[0]][0]);
+  const Float4 near_y = load4(node.bounds[ray.negative[1]][1]), far_y = load4(node.bounds[!ray.negative[1]][1]);
+  const Float4 near_z = load4(node.bounds[ray.negative[2]][2]), far_z = load4(node.bounds[!ray.negative[2]][2]);
   const Float4 near_tx = (near_x - ray.origin.x) * ray.inv_direction.x;
   const Float4 near_ty = (near_y - ray.origin.y) * ray.inv_direction.y;
   const Float4 near_tz = (near_z - ray.origin.z) * ray.inv_direction.z;
@@ -96,12 +97,13 @@ template <class HitPrimitive>
 std::optional<std::pair<float, std::uint32_t>> wide_bvh_closest_hit(const WideBvh& bvh, const Ray& ray,
                                                                      Interval range, HitPrimitive&& hit_primitive) {
   std::optional<std::pair<float, std::uint32_t>> closest;
+  // No test of the whole tree's box first: the root's four boxes are tested next anyway, and in a
+  // closed scene (a room) every ray is inside it.
+  if (bvh.nodes.empty()) return closest;
   const RayInverse inverse(ray);
-  const std::optional<float> t_root = intersect_aabb(bvh.bounds, inverse, range);
-  if (!t_root || bvh.nodes.empty()) return closest;
   WideBvhEntry stack[WideBvh::kStackSize];
   int stack_size = 0;
-  WideBvhEntry current{0, 0, *t_root};
+  WideBvhEntry current{0, 0, range.min};
   while (true) {
     if (current.count == 0) {
       const WideBvhNode& node = bvh.nodes[current.child];
@@ -138,8 +140,8 @@ std::optional<std::pair<float, std::uint32_t>> wide_bvh_closest_hit(const WideBv
 
 template <class HitsPrimitive>
 bool wide_bvh_any_hit(const WideBvh& bvh, const Ray& ray, Interval range, HitsPrimitive&& hits_primitive) {
+  if (bvh.nodes.empty()) return false;
   const RayInverse inverse(ray);
-  if (!intersect_aabb(bvh.bounds, inverse, range) || bvh.nodes.empty()) return false;
   WideBvhEntry stack[WideBvh::kStackSize];
   int stack_size = 0;
   WideBvhEntry current{0, 0, 0.0f};

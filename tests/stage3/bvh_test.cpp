@@ -108,7 +108,8 @@ void expect_valid_wide_tree(const WideBvh& wide, const Bvh& bvh, const std::vect
     const WideBvhNode& node = wide.nodes[index];
     depth = std::max(depth, d);
     for (int i = 0; i < WideBvhNode::kWidth; ++i) {
-      const Aabb box{Vec3(node.lo[0][i], node.lo[1][i], node.lo[2][i]), Vec3(node.hi[0][i], node.hi[1][i], node.hi[2][i])};
+      const Aabb box{Vec3(node.bounds[0][0][i], node.bounds[0][1][i], node.bounds[0][2][i]),
+                     Vec3(node.bounds[1][0][i], node.bounds[1][1][i], node.bounds[1][2][i])};
       if (box.is_empty() && node.count[i] == 0 && !(node.child[i] > index)) continue;  // unused
       EXPECT_TRUE(parent_box.contains(box));
       if (node.count[i] == 0) {
@@ -203,8 +204,8 @@ TEST(WideBvh, FourBoxTestMatchesTheSlabTestBoxByBox) {
       }
       if (trial % 7 == i) boxes[i] = Aabb{};  // empty
       for (int axis = 0; axis < 3; ++axis) {
-        node.lo[axis][i] = boxes[i].lo[axis];
-        node.hi[axis][i] = boxes[i].hi[axis];
+        node.bounds[0][axis][i] = boxes[i].lo[axis];
+        node.bounds[1][axis][i] = boxes[i].hi[axis];
       }
     }
     Vec3 d(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f);
