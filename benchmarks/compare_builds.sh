@@ -47,8 +47,13 @@ for ((i = 1; i <= runs; ++i)); do
   done
 done | tee "$out/all.txt"
 
-echo "medians over $runs runs (base -> new):"
+# Besides each side's median, the median of the ratios of the runs made side by side (run i of new
+# over run i of base): this machine has slow and fast spells of minutes, and a spell that covers
+# more runs of one side moves its median, but not the ratio of two runs taken a few seconds apart.
+echo "medians over $runs runs (base -> new; median of the paired ratios new/base):"
 sed 's/: [0-9.]*$//' "$out/all.txt" | sed 's/^[a-z]* //' | sort -u | while read -r what; do
-  median() { grep "^$1 $what:" "$out/all.txt" | sed 's/.*: //' | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
-  echo "  $what: $(median base) -> $(median new)"
+  values() { grep "^$1 $what:" "$out/all.txt" | sed 's/.*: //'; }
+  median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
+  ratio=$(paste <(values base) <(values new) | awk '{printf "%.3f\n", $2 / $1}' | median)
+  echo "  $what: $(values base | median) -> $(values new | median)   (paired: ${ratio}x)"
 done
