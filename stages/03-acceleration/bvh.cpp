@@ -5,6 +5,10 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <future>
+#include <system_error>
+#include <thread>
 
 namespace rt {
 
@@ -73,39 +77,47 @@ Iterator split_middle(Iterator begin, Iterator end, int axis, const Aabb& centro
 Iterator split_sah(Iterator begin, Iterator end, const Aabb& node_bounds, const Aabb& centroid_bounds,
                    int max_leaf_size) {
   constexpr int kBins = BvhBuildOptions::kSahBins;
+  // The bin of a centroid along an axis: kBins equal bins over the centroids' extent, the scale
+  // kBins / extent computed once per axis (a multiplication per primitive, not a division).
   // Clamped in float before the conversion: int(NaN) or int(inf) is undefined behaviour, and a box
   // whose extent overflowed to inf would give 0 * inf = NaN (the loader keeps scenes within
   // kMaxCoordinate, common/scene.h; this keeps the builder safe for any input anyway).
+  const Vec3 extent = centroid_bounds.extent();
+  const Vec3 scale = float(kBins) / extent;
   auto bin_of = [&](const BuildPrimitive& p, int axis) {
-    const float lo = centroid_bounds.lo[axis], extent = centroid_bounds.extent()[axis];
-    const float bin = float(kBins) * ((p.centroid[axis] - lo) / extent);
+    const float bin = (p.centroid[axis] - centroid_bounds.lo[axis]) * scale[axis];
     return bin >= 0.0f ? int(std::min(bin, float(kBins - 1))) : 0;
   };
   float best_area_count = kInfinity;
   int best_axis = -1, best_boundary = 0;
   // BEGIN TASK stage3.bvh.sah_split
-  for (int axis = 0; axis < 3; ++axis) {
-    if (!(centroid_bounds.extent()[axis] > 0.0f)) continue;  // all centroids in one plane: no bins
-    std::array<Aabb, kBins> bin_bounds;
-    std::array<int, kBins> bin_count{};
-    for (Iterator p = begin; p != end; ++p) {
+  // One pass over the primitives fills the bins of all three axes: near the root the primitives
+  // do not fit in the cache, and reading them once instead of three times is most of the build.
+  std::array<std::array<Aabb, kBins>, 3> bin_bounds;  // [axis][bin]
+  std::array<std::array<int, kBins>, 3> bin_count{};
+  for (Iterator p = begin; p != end; ++p)
+    for (int axis = 0; axis < 3; ++axis) {
       const int b = bin_of(*p, axis);
-      bin_bounds[size_t(b)].expand(p->bounds);
-      ++bin_count[size_t(b)];
+      bin_bounds[size_t(axis)][size_t(b)].expand(p->bounds);
+      ++bin_count[size_t(axis)][size_t(b)];
     }
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!(extent[axis] > 0.0f)) continue;  // all centroids in one plane: no bins
     // area_count[i]: A N of the bins [0, i] plus A N of the bins [i + 1, kBins), for the boundary
     // after bin i: one sweep from below, one from above.
+    const auto& bounds = bin_bounds[size_t(axis)];
+    const auto& count = bin_count[size_t(axis)];
     std::array<float, kBins - 1> area_count{};
     Aabb below, above;
     int count_below = 0, count_above = 0;
     for (int i = 0; i + 1 < kBins; ++i) {
-      below.expand(bin_bounds[size_t(i)]);
-      count_below += bin_count[size_t(i)];
+      below.expand(bounds[size_t(i)]);
+      count_below += count[size_t(i)];
       area_count[size_t(i)] = below.half_area() * float(count_below);
     }
     for (int i = kBins - 1; i >= 1; --i) {
-      above.expand(bin_bounds[size_t(i)]);
-      count_above += bin_count[size_t(i)];
+      above.expand(bounds[size_t(i)]);
+      count_above += count[size_t(i)];
       area_count[size_t(i - 1)] += above.half_area() * float(count_above);
     }
     for (int i = 0; i + 1 < kBins; ++i)
@@ -131,22 +143,51 @@ Iterator split_sah(Iterator begin, Iterator end, const Aabb& node_bounds, const 
   return split == begin ? end : split;
 }
 
+// Builds the tree depth first. The two subtrees of a large node may be built at the same time, each
+// into a node list of its own, which is then appended to its parent's in the order a serial build
+// would have made: the tree is the same, node for node, however many threads build it.
 class Builder {
  public:
-  Builder(std::vector<BuildPrimitive> primitives, const BvhBuildOptions& options)
-      : primitives_(std::move(primitives)), options_(options) {}
+  // `spawn_levels`: how many more levels may hand a subtree to a thread of its own.
+  Builder(std::vector<BuildPrimitive>& primitives, const BvhBuildOptions& options, int spawn_levels)
+      : primitives_(primitives), options_(options), spawn_levels_(spawn_levels) {}
 
+  // The whole tree: the root, then one unused node, so that every sibling pair starts at an even
+  // index: with the array on a 64-byte boundary, each pair is one cache line.
   Bvh build() && {
-    bvh_.nodes.reserve(2 * primitives_.size() + 2);
-    // The root, then one unused node, so that every sibling pair starts at an even index: with
-    // the array on a 64-byte boundary, each pair is one cache line.
-    bvh_.nodes.resize(2);
+    nodes_.reserve(2 * primitives_.size() + 2);
+    nodes_.resize(2);
     build_node(0, primitives_.begin(), primitives_.end(), 0);
-    for (const BuildPrimitive& p : primitives_) bvh_.order.push_back(p.index);
-    return std::move(bvh_);
+    Bvh bvh;
+    bvh.nodes = std::move(nodes_);
+    bvh.order.reserve(primitives_.size());
+    for (const BuildPrimitive& p : primitives_) bvh.order.push_back(p.index);
+    return bvh;
   }
 
  private:
+  using Nodes = std::vector<BvhNode, CacheLineAllocator<BvhNode>>;
+
+  // A subtree as a node list of its own: its root at 0, its sibling pairs from 1 on.
+  Nodes build_subtree(Iterator begin, Iterator end, int depth) && {
+    nodes_.reserve(2 * size_t(end - begin));
+    nodes_.resize(1);
+    build_node(0, begin, end, depth);
+    return std::move(nodes_);
+  }
+
+  // Puts a subtree built apart into the node at `index` and appends the rest: its pairs, from 1 on,
+  // move to the end of this list, so an interior node's first child moves by the same amount.
+  void append(std::uint32_t index, const Nodes& subtree) {
+    const auto shift = std::uint32_t(nodes_.size()) - 1u;
+    auto moved = [shift](BvhNode node) {
+      if (!node.is_leaf) node.offset += shift;
+      return node;
+    };
+    nodes_[index] = moved(subtree[0]);
+    for (size_t i = 1; i < subtree.size(); ++i) nodes_.push_back(moved(subtree[i]));
+  }
+
   // Builds the subtree of [begin, end) into the node at `index`, already allocated.
   void build_node(std::uint32_t index, Iterator begin, Iterator end, int depth) {
     Aabb bounds, centroid_bounds;
@@ -174,19 +215,37 @@ class Builder {
     }
 
     if (split == end || split == begin) {
-      bvh_.nodes[index] = BvhNode{bounds, std::uint32_t(begin - primitives_.begin()), std::uint16_t(count), 0, 1};
+      nodes_[index] = BvhNode{bounds, std::uint32_t(begin - primitives_.begin()), std::uint16_t(count), 0, 1};
       return;
     }
-    const auto first = std::uint32_t(bvh_.nodes.size());
-    bvh_.nodes.resize(bvh_.nodes.size() + 2);
-    bvh_.nodes[index] = BvhNode{bounds, first, 0, std::uint8_t(axis), 0};
+    const auto first = std::uint32_t(nodes_.size());
+    nodes_.resize(nodes_.size() + 2);
+    nodes_[index] = BvhNode{bounds, first, 0, std::uint8_t(axis), 0};
+    if (spawn_levels_ > 0 && count >= kMinSpawnCount) {
+      // The two halves touch disjoint ranges of the primitives and write lists of their own.
+      Builder left(primitives_, options_, spawn_levels_ - 1), right(primitives_, options_, spawn_levels_ - 1);
+      std::future<Nodes> left_nodes;
+      try {
+        left_nodes = std::async(std::launch::async, [&] { return std::move(left).build_subtree(begin, split, depth + 1); });
+      } catch (const std::system_error&) {  // no thread to be had: build both here
+        left_nodes = std::async(std::launch::deferred, [&] { return std::move(left).build_subtree(begin, split, depth + 1); });
+      }
+      const Nodes right_nodes = std::move(right).build_subtree(split, end, depth + 1);
+      append(first, left_nodes.get());
+      append(first + 1, right_nodes);
+      return;
+    }
     build_node(first, begin, split, depth + 1);
     build_node(first + 1, split, end, depth + 1);
   }
 
-  std::vector<BuildPrimitive> primitives_;
+  // Below this many primitives a subtree builds in well under a millisecond: not worth a thread.
+  static constexpr int kMinSpawnCount = 1 << 14;
+
+  std::vector<BuildPrimitive>& primitives_;
   BvhBuildOptions options_;
-  Bvh bvh_;
+  int spawn_levels_;
+  Nodes nodes_;
 };
 
 }  // namespace
@@ -198,7 +257,12 @@ Bvh build_bvh(const std::vector<Aabb>& primitive_bounds, const BvhBuildOptions& 
   primitives.reserve(primitive_bounds.size());
   for (size_t i = 0; i < primitive_bounds.size(); ++i)
     primitives.push_back({primitive_bounds[i], primitive_bounds[i].centroid(), std::uint32_t(i)});
-  return Builder(std::move(primitives), options).build();
+  // With k levels of spawning up to 2^k subtrees are built at once: one level more than the
+  // threads need, so that a core whose subtree was the smaller one of an uneven split finds work.
+  const int threads = options.build_threads > 0 ? options.build_threads
+                                                : int(std::max(1u, std::thread::hardware_concurrency()));
+  const int spawn_levels = threads > 1 ? std::bit_width(unsigned(threads - 1)) + 1 : 0;
+  return Builder(primitives, options, spawn_levels).build();
 }
 
 BvhStats Bvh::stats() const {

@@ -29,6 +29,8 @@ struct BvhBuildOptions {
   // Collapse the binary tree into a 4-wide one for traversal (wide_bvh.h). Same leaves, same
   // answers; fewer, cheaper box tests per ray.
   bool wide = false;
+  // Threads that may build subtrees at once; 0: one per core. The tree is the same for any count.
+  int build_threads = 0;
   // SAH cost model (MacDonald & Booth 1990): C(split) = kTraversalCost + kIntersectionCost *
   // sum over children of (A_child / A_node) * count_child, against C(leaf) = count *
   // kIntersectionCost. The ratio is what matters. In registers a box test is about a tenth of a

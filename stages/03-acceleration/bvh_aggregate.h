@@ -7,22 +7,24 @@
 #include "03-acceleration/bvh.h"
 #include "03-acceleration/wide_bvh.h"
 
+#include <array>
+
 namespace rt {
 
 // The primitives of every kind as one list of slots, each holding what its kind's test reads (its
-// hot data: a triangle's corners, a sphere) and which primitive it is. `reorder` puts the slots in
-// a BVH's leaf order, so that the primitives of a leaf sit next to each other in memory. A slot's
+// hot data: a triangle's corners, a sphere) and which primitive it is, in a given order: a BVH's
+// leaf order, so that the primitives of a leaf sit next to each other in memory. A slot's
 // test is a direct call of its kind's (visit_kind), not a virtual one.
 template <class Set>
 class FlatPrimitives {
  public:
-  explicit FlatPrimitives(std::shared_ptr<const Set> set);
+  FlatPrimitives() = default;
+  // Slot s holds the primitive numbered order[s] in the set's own numbering (kind by kind, as
+  // bounds_in_set_order lists them); an empty order keeps that numbering.
+  explicit FlatPrimitives(std::shared_ptr<const Set> set, const std::vector<std::uint32_t>& order = {});
+  // Every primitive's box in the set's own numbering: what a BVH is built from.
+  static std::vector<Aabb> bounds_in_set_order(const Set& set);
   size_t size() const { return hot_.size(); }
-  Aabb bounds(size_t slot) const {
-    return visit_kind<Set::kKinds>(hot_[slot].index(),
-                                   [&](auto k) { return Set::template Kind<k>::bounds(*std::get_if<k>(&hot_[slot])); });
-  }
-  void reorder(const std::vector<std::uint32_t>& order);
   // The hit of the primitive in `slot` with t strictly inside `range`.
   std::optional<PrimitiveHit> intersect(size_t slot, const TriangleRay& ray, Interval range) const {
     std::optional<PrimitiveHit> hit = test(slot, ray, range);
@@ -106,31 +108,38 @@ AggregateFactory<Set> bvh_aggregate_factory(const BvhBuildOptions& options) {
 }
 
 template <class Set>
-FlatPrimitives<Set>::FlatPrimitives(std::shared_ptr<const Set> set) : set_(std::move(set)) {
-  hot_.reserve(set_->size());
-  index_.reserve(set_->size());
+FlatPrimitives<Set>::FlatPrimitives(std::shared_ptr<const Set> set, const std::vector<std::uint32_t>& order)
+    : set_(std::move(set)) {
+  // first[k]: the number of kind k's first primitive in the set's numbering.
+  std::array<std::uint32_t, Set::kKinds + 1> first{};
   Set::for_each_kind([&](auto k) {
-    using Kind = typename Set::template Kind<k>;
-    const auto& store = set_->template store<k>();
-    for (size_t i = 0; i < Kind::size(store); ++i) {
-      hot_.emplace_back(std::in_place_index<k>, Kind::hot(store, i));
-      index_.push_back(std::uint32_t(i));
-    }
+    first[k + 1] = first[k] + std::uint32_t(Set::template Kind<k>::size(set_->template store<k>()));
   });
+  const size_t count = first[Set::kKinds];
+  hot_.reserve(count);
+  index_.reserve(count);
+  for (size_t slot = 0; slot < count; ++slot) {
+    const std::uint32_t number = order.empty() ? std::uint32_t(slot) : order[slot];
+    size_t kind = 0;
+    while (number >= first[kind + 1]) ++kind;
+    const std::uint32_t i = number - first[kind];
+    visit_kind<Set::kKinds>(kind, [&](auto k) {
+      hot_.emplace_back(std::in_place_index<k>, Set::template Kind<k>::hot(set_->template store<k>(), i));
+    });
+    index_.push_back(i);
+  }
 }
 
 template <class Set>
-void FlatPrimitives<Set>::reorder(const std::vector<std::uint32_t>& order) {
-  std::vector<typename Set::AnyHot> hot;
-  std::vector<std::uint32_t> index;
-  hot.reserve(order.size());
-  index.reserve(order.size());
-  for (const std::uint32_t slot : order) {
-    hot.push_back(hot_[slot]);
-    index.push_back(index_[slot]);
-  }
-  hot_ = std::move(hot);
-  index_ = std::move(index);
+std::vector<Aabb> FlatPrimitives<Set>::bounds_in_set_order(const Set& set) {
+  std::vector<Aabb> bounds;
+  bounds.reserve(set.size());
+  Set::for_each_kind([&](auto k) {
+    using Kind = typename Set::template Kind<k>;
+    const auto& store = set.template store<k>();
+    for (size_t i = 0; i < Kind::size(store); ++i) bounds.push_back(Kind::bounds(Kind::hot(store, i)));
+  });
+  return bounds;
 }
 
 template <class Set>
@@ -154,14 +163,12 @@ bool NaiveAggregate<Set>::occluded(const Ray& ray, Interval range) const {
 }
 
 template <class Set>
-BvhAggregate<Set>::BvhAggregate(std::shared_ptr<const Set> primitives, const BvhBuildOptions& options)
-    : flat_(std::move(primitives)) {
-  std::vector<Aabb> bounds;
-  bounds.reserve(flat_.size());
-  for (size_t slot = 0; slot < flat_.size(); ++slot) bounds.push_back(flat_.bounds(slot));
-  bvh_ = build_bvh(bounds, options);
+BvhAggregate<Set>::BvhAggregate(std::shared_ptr<const Set> primitives, const BvhBuildOptions& options) {
+  bvh_ = build_bvh(FlatPrimitives<Set>::bounds_in_set_order(*primitives), options);
   stats_ = bvh_.stats();
-  flat_.reorder(bvh_.order);  // slot = leaf slot from here on
+  // The slots are copied out in leaf order straight away (slot = leaf slot), not copied and then
+  // reordered: on a 10^6-triangle mesh that saves 40 MB of writing.
+  flat_ = FlatPrimitives<Set>(std::move(primitives), bvh_.order);
   if (options.wide) {
     wide_ = collapse_to_wide(bvh_);
     // The wide tree holds its own boxes and leaves: the binary nodes (a third of the memory on the

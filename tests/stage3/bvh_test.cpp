@@ -180,6 +180,24 @@ TEST_P(Builders, DegenerateTrianglesNeitherHitNorBreakTheTree) {
   }
 }
 
+TEST_P(Builders, ThreadsBuildTheSameTreeAsOne) {
+  // The bunny has enough triangles for its first levels' subtrees to be built on threads of their
+  // own; the tree must come out node for node as the serial build makes it.
+  const std::vector<Aabb> bounds = triangle_bounds(bunny()->store_of<TriangleKind>().meshes[0].geometry);
+  BvhBuildOptions serial = options(), parallel = options();
+  serial.build_threads = 1;
+  parallel.build_threads = 4;
+  const Bvh one = build_bvh(bounds, serial), four = build_bvh(bounds, parallel);
+  ASSERT_EQ(one.nodes.size(), four.nodes.size());
+  EXPECT_EQ(one.order, four.order);
+  for (size_t i = 0; i < one.nodes.size(); ++i) {
+    const BvhNode &a = one.nodes[i], &b = four.nodes[i];
+    ASSERT_TRUE(a.bounds.lo == b.bounds.lo && a.bounds.hi == b.bounds.hi && a.offset == b.offset &&
+                a.count == b.count && a.axis == b.axis && a.is_leaf == b.is_leaf)
+        << "node " << i;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Bvh, Builders, ::testing::ValuesIn(kBuilders), [](const auto& info) { return std::string(info.param.name); });
 
 TEST(BvhLayout, NodesAreThirtyTwoBytes) {
