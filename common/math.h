@@ -27,7 +27,7 @@ inline float max_component(Vec3 v) { return std::max({v.x, v.y, v.z}); }
 inline float min_component(Vec3 v) { return std::min({v.x, v.y, v.z}); }
 // v[axis] for an axis known only at run time, read as an array element. GLM's operator[] is a
 // switch, and selects (axis == 0 ? v.x : ...) compile to jumps too; the axis changes from ray to
-// ray, so such jumps are often mispredicted (docs/stage5.md, the speed ladder: "branches").
+// ray, so such jumps are often mispredicted (docs/stage5.md, the speed ladder, step 7).
 inline float component(Vec3 v, int axis) {
   const float c[3] = {v.x, v.y, v.z};
   return c[axis];

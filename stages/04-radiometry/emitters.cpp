@@ -45,10 +45,8 @@ EmitterSample TriangleEmitter::sample(Vec3 x, Vec2 u) const {
 
 float TriangleEmitter::pdf(Vec3 x, Vec3 y) const { return area_pdf_as_solid_angle(x, y, normal(), 1.0f / area()); }
 
-// Both start from edge_u x edge_v, the emitting side's normal scaled by the area: x is in front
-// when it lies on that side of the plane.
+// Both first ask whether x is in front: on the side of the plane that `front` points to.
 EmitterSample RectangleEmitter::sample(Vec3 x, Vec2 u) const {
-  const Vec3 front = glm::cross(edge_u, edge_v);
   if (!(glm::dot(front, x - corner) > 0.0f)) return EmitterSample{corner, Vec3(0.0f), 0.0f, 0.0f};
   if (strategy == RectangleSampling::solid_angle) {
     const SphericalRectangle seen(x, corner, edge_u, edge_v);
@@ -58,17 +56,16 @@ EmitterSample RectangleEmitter::sample(Vec3 x, Vec2 u) const {
       return EmitterSample{y, (y - x) / distance, distance, 1.0f / seen.solid_angle()};
     }
   }
-  return towards(x, corner + u.x * edge_u + u.y * edge_v, glm::normalize(front), 1.0f / glm::length(front));
+  return towards(x, corner + u.x * edge_u + u.y * edge_v, unit_normal, inverse_area);
 }
 
 float RectangleEmitter::pdf(Vec3 x, Vec3 y) const {
-  const Vec3 front = glm::cross(edge_u, edge_v);
   if (!(glm::dot(front, x - corner) > 0.0f)) return 0.0f;
   if (strategy == RectangleSampling::solid_angle) {
     const float solid_angle = SphericalRectangle(x, corner, edge_u, edge_v).solid_angle();
     if (solid_angle >= kMinSolidAngle) return 1.0f / solid_angle;
   }
-  return area_pdf_as_solid_angle(x, y, glm::normalize(front), 1.0f / glm::length(front));
+  return area_pdf_as_solid_angle(x, y, unit_normal, inverse_area);
 }
 
 EmitterSample DiskEmitter::sample(Vec3 x, Vec2 u) const {

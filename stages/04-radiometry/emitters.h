@@ -53,11 +53,19 @@ enum class RectangleSampling {
 // light such as the Cornell box's, as one emitter (its geometry in the BVH stays two triangles).
 // Its front is edge_u x edge_v.
 struct RectangleEmitter {
-  Vec3 corner, edge_u, edge_v;
-  RectangleSampling strategy = RectangleSampling::area;
+  RectangleEmitter(Vec3 corner, Vec3 edge_u, Vec3 edge_v, RectangleSampling strategy = RectangleSampling::area)
+      : corner(corner), edge_u(edge_u), edge_v(edge_v), strategy(strategy), front(glm::cross(edge_u, edge_v)),
+        unit_normal(glm::normalize(front)), inverse_area(1.0f / glm::length(front)) {}
 
-  float area() const { return glm::length(glm::cross(edge_u, edge_v)); }
-  Vec3 normal() const { return glm::normalize(glm::cross(edge_u, edge_v)); }
+  Vec3 corner, edge_u, edge_v;
+  RectangleSampling strategy;
+  // Computed once from the edges, not at every sample (a light is sampled at every vertex of every
+  // path): the emitting side's normal scaled by the area, that normal, and 1 / area.
+  Vec3 front, unit_normal;
+  float inverse_area;
+
+  float area() const { return glm::length(front); }
+  Vec3 normal() const { return unit_normal; }
   // By solid angle where x sees the front and the rectangle subtends at least kMinSolidAngle;
   // otherwise by area. From behind, the rectangle emits nothing towards x: no sample (pdf 0).
   EmitterSample sample(Vec3 x, Vec2 u) const;
