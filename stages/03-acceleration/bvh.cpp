@@ -224,11 +224,12 @@ class Builder {
     if (spawn_levels_ > 0 && count >= kMinSpawnCount) {
       // The two halves touch disjoint ranges of the primitives and write lists of their own.
       Builder left(primitives_, options_, spawn_levels_ - 1), right(primitives_, options_, spawn_levels_ - 1);
+      auto build_left = [&] { return std::move(left).build_subtree(begin, split, depth + 1); };
       std::future<Nodes> left_nodes;
       try {
-        left_nodes = std::async(std::launch::async, [&] { return std::move(left).build_subtree(begin, split, depth + 1); });
+        left_nodes = std::async(std::launch::async, build_left);
       } catch (const std::system_error&) {  // no thread to be had: build both here
-        left_nodes = std::async(std::launch::deferred, [&] { return std::move(left).build_subtree(begin, split, depth + 1); });
+        left_nodes = std::async(std::launch::deferred, build_left);
       }
       const Nodes right_nodes = std::move(right).build_subtree(split, end, depth + 1);
       append(first, left_nodes.get());
