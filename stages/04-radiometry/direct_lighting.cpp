@@ -73,10 +73,8 @@ Color direct_by_brdf_sampling(const LightingScene& scene, const ShadingPoint& at
   // END TASK
 }
 
-DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingPoint& at, Sampler& rng,
+DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingPoint& at, float u_choice, Vec2 u,
                                       const OffsetPolicy& offset) {
-  const float u_choice = rng.uniform();
-  const Vec2 u = rng.uniform2();
   if (scene.emitter_distribution().empty()) return {};
   // BEGIN TASK stage4.direct.light_sampling
   const DiscreteDistribution::Choice choice = scene.emitter_distribution().sample(u_choice);

@@ -61,13 +61,17 @@ struct DirectLightSample {
   float pdf = 0.0f;   // P p, per unit solid angle
 };
 
-// Task stage4.direct.light_sampling. One emitter chosen by power (probability P), one point on it
-// (solid-angle density p), a shadow ray: f_r Le cos(theta_i) / (P p).
-DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingPoint& at, Sampler& rng,
+// Task stage4.direct.light_sampling. One emitter chosen by power (probability P) with `u_choice`,
+// one point on it (solid-angle density p) with `u`, a shadow ray: f_r Le cos(theta_i) / (P p).
+// The caller draws the numbers: the estimate is a plain function of them (a test can pick them),
+// and the path tracer's sampler stays a concrete type in its own loop (no call through the
+// Sampler interface per number; docs/stage5.md, the speed ladder).
+DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingPoint& at, float u_choice, Vec2 u,
                                       const OffsetPolicy& offset);
 inline Color direct_by_light_sampling(const LightingScene& scene, const ShadingPoint& at, Sampler& rng,
                                       const OffsetPolicy& offset) {
-  return sample_direct_light(scene, at, rng, offset).value;
+  const float u_choice = rng.uniform();
+  return sample_direct_light(scene, at, u_choice, rng.uniform2(), offset).value;
 }
 
 // The radiance arriving along a camera ray: what the first surface emits plus, for a non-delta

@@ -19,7 +19,8 @@ const char* sampler_name(SamplerKind sampler) { return sampler == SamplerKind::s
 SampleSums render_path_samples(const LightingScene& scene, const PinholeCamera& camera,
                                const RenderSettings& settings, const PathOptions& options, SamplerKind sampler,
                                int threads, SampleGuard& guard, ProgressBar* progress) {
-  auto radiance = [&](const Ray& ray, Sampler& numbers) { return guard(path_radiance(scene, ray, options, numbers)); };
+  // `auto&`: each sampler's own path_radiance, with its calls compiled in.
+  auto radiance = [&](const Ray& ray, auto& numbers) { return guard(path_radiance(scene, ray, options, numbers)); };
   if (sampler == SamplerKind::sobol) return render_samples<SobolSampler>(camera, settings, threads, radiance, progress);
   return render_samples<Rng>(camera, settings, threads, radiance, progress);
 }

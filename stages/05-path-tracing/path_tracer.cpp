@@ -1,5 +1,6 @@
 #include "05-path-tracing/path_tracer.h"
 
+#include "05-path-tracing/sobol_sampler.h"
 #include "common/task.h"
 
 namespace rt {
@@ -32,7 +33,8 @@ float light_sampling_pdf(const LightingScene& scene, Vec3 from, const Hit& hit) 
   return scene.emitter_distribution().pmf(index) * scene.emitters()[size_t(index)].pdf(from, hit.point);
 }
 
-Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const PathOptions& options, Sampler& rng) {
+template <class Numbers>
+Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const PathOptions& options, Numbers& rng) {
   const PathIntegrator integrator = options.integrator;
   const bool samples_lights = integrator == PathIntegrator::light_sampling || integrator == PathIntegrator::mis;
   Color radiance(0.0f), beta(1.0f);
@@ -72,7 +74,8 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
     const ShadingPoint at = make_shading_point(scene, *hit, -ray.direction);
     // BEGIN TASK stage5.path.next_event
     if (samples_lights && !at.bsdf.is_delta()) {
-      const DirectLightSample light = sample_direct_light(scene, at, rng, options.offset);
+      const float u_choice = rng.uniform();
+      const DirectLightSample light = sample_direct_light(scene, at, u_choice, rng.uniform2(), options.offset);
       const float w = integrator == PathIntegrator::mis ? power_heuristic(light.pdf, at.bsdf.pdf(at.wo, light.wi)) : 1.0f;
       radiance += beta * light.value * w;
     }
@@ -97,5 +100,9 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
   }
   return radiance;
 }
+
+template Color path_radiance(const LightingScene&, const Ray&, const PathOptions&, Rng&);
+template Color path_radiance(const LightingScene&, const Ray&, const PathOptions&, SobolSampler&);
+template Color path_radiance(const LightingScene&, const Ray&, const PathOptions&, Sampler&);
 
 }  // namespace rt

@@ -52,8 +52,17 @@ float survival_probability(Color beta);
 // strategies: w_a = p_a^2 / (p_a^2 + p_b^2). Infinite p_a (a delta) gives 1.
 float power_heuristic(float pdf_a, float pdf_b);
 
-// The radiance arriving along a camera ray, estimated by one path. Draws its numbers from `rng`.
-Color path_radiance(const LightingScene& scene, const Ray& ray, const PathOptions& options, Sampler& rng);
+// The radiance arriving along a camera ray, estimated by one path, with numbers drawn from `rng`.
+// The sampler's type is a template parameter, so that its calls compile into the path loop: a path
+// draws some nine numbers per bounce, and through the Sampler interface each would be a call the
+// compiler cannot see into (docs/stage5.md, the speed ladder). Defined in path_tracer.cpp for the
+// two samplers and for the interface itself (a caller that holds only a Sampler&).
+template <class Numbers>
+Color path_radiance(const LightingScene& scene, const Ray& ray, const PathOptions& options, Numbers& rng);
+class SobolSampler;
+extern template Color path_radiance(const LightingScene&, const Ray&, const PathOptions&, Rng&);
+extern template Color path_radiance(const LightingScene&, const Ray&, const PathOptions&, SobolSampler&);
+extern template Color path_radiance(const LightingScene&, const Ray&, const PathOptions&, Sampler&);
 
 // The solid-angle density with which light sampling (stage 4: emitter by power, point on it) would
 // have produced the direction from `from` to the emitter point of `hit`; 0 if `hit` is no emitter.
