@@ -40,16 +40,17 @@ Vec2 sample_uniform_disk(Vec2 u) {
   const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
   if (a == 0.0f && b == 0.0f) return Vec2(0.0f);
   // The square [-1, 1]^2 is cut by its diagonals into four triangles; in each, the coordinate
-  // with the larger magnitude is the radius and the other sweeps the angle over a quarter turn.
-  float r, phi;
-  if (std::abs(a) > std::abs(b)) {
-    r = a;
-    phi = 0.25f * kPi * (b / a);
-  } else {
-    r = b;
-    phi = 0.5f * kPi - 0.25f * kPi * (a / b);
-  }
-  return r * Vec2(std::cos(phi), std::sin(phi));
+  // with the larger magnitude is the radius r and the other sweeps the angle over a quarter turn:
+  //   |a| > |b|: phi = (pi/4) (b/a),         (x, y) = r (cos phi, sin phi);
+  //   else:      phi = pi/2 - (pi/4) (a/b),  (x, y) = r (sin theta, cos theta), theta = (pi/4) (a/b).
+  // Both cases need the cosine and sine of theta in [-pi/4, pi/4] only, so they share one
+  // computation, and the two come from a short polynomial (common/math.h) instead of a libm call
+  // built for any angle.
+  const bool a_wins = std::abs(a) > std::abs(b);
+  const float r = a_wins ? a : b;
+  const float theta = 0.25f * kPi * ((a_wins ? b : a) / r);
+  const Vec2 cs = cos_sin_quarter_turn(theta);
+  return r * (a_wins ? cs : Vec2(cs.y, cs.x));
   // PLACEHOLDER
   // report_unfinished_task("stage4.warp.concentric_disk");
   // (void)u;
