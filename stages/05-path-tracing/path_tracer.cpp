@@ -72,6 +72,13 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
     if (integrator == PathIntegrator::naive ? bounce >= options.max_depth : bounce >= options.max_bounces) break;
 
     const ShadingPoint at = make_shading_point(scene, *hit, -ray.direction);
+    // The bounce's direction is drawn before the light sample, though it is used only after it.
+    // The two do not depend on each other, and drawn first, the direction's chain of dependent
+    // steps (a division, a square root, polynomials) runs in the CPU's out-of-order window while
+    // the light sample is worked on, instead of stalling at the end (docs/stage5.md, the speed
+    // ladder: 6-8 % more paths per second).
+    const Vec2 u = rng.uniform2();
+    const std::optional<BsdfSample> s = at.bsdf.sample(at.wo, u, rng.uniform());
     // BEGIN TASK stage5.path.next_event
     if (samples_lights && !at.bsdf.is_delta()) {
       const float u_choice = rng.uniform();
@@ -83,8 +90,6 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
     // report_unfinished_task("stage5.path.next_event");
     // END TASK
 
-    const Vec2 u = rng.uniform2();
-    const std::optional<BsdfSample> s = at.bsdf.sample(at.wo, u, rng.uniform());
     if (!s) break;
     beta *= s->weight;
     after_delta = s->delta;
