@@ -27,8 +27,12 @@ struct Hit {
   // against the outward normal.
   void set_face_normal(const Ray& ray, Vec3 outward_normal) {
     front_face = glm::dot(ray.direction, outward_normal) < 0.0f;
-    normal = front_face ? outward_normal : -outward_normal;
-    shading_normal = normal;
+    // Both fields from one value in registers: copying `normal` into `shading_normal` would read
+    // back, at once, a vector just written in pieces, which stalls (a failed store-to-load
+    // forward; docs/stage5.md, the speed ladder).
+    const Vec3 facing = front_face ? outward_normal : -outward_normal;
+    normal = facing;
+    shading_normal = facing;
   }
 };
 
