@@ -80,9 +80,12 @@ inline Float4 load4(const float* p) {
 #endif
 }
 
-// The contracts of bvh_closest_hit and bvh_any_hit (bvh.h), over the wide tree.
+// The contracts of bvh_closest_hit and bvh_any_hit (bvh.h), over the wide tree. The closest-hit
+// loop is always inlined into its caller, so that the hit it finds stays in registers: returned
+// from a call, the optional pair goes through memory in three stores and comes back in two loads,
+// one of which the stores cannot forward (a stall per query; docs/stage5.md, the speed ladder).
 template <class HitPrimitive>
-std::optional<std::pair<float, std::uint32_t>> wide_bvh_closest_hit(const WideBvh& bvh, const Ray& ray,
+[[gnu::always_inline]] inline std::optional<std::pair<float, std::uint32_t>> wide_bvh_closest_hit(const WideBvh& bvh, const Ray& ray,
                                                                      Interval range, HitPrimitive&& hit_primitive);
 template <class HitsPrimitive>
 bool wide_bvh_any_hit(const WideBvh& bvh, const Ray& ray, Interval range, HitsPrimitive&& hits_primitive);
