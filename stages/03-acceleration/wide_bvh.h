@@ -85,8 +85,8 @@ inline Float4 load4(const float* p) {
 // from a call, the optional pair goes through memory in three stores and comes back in two loads,
 // one of which the stores cannot forward (a stall per query; docs/stage5.md, the speed ladder).
 template <class HitPrimitive>
-[[gnu::always_inline]] inline std::optional<std::pair<float, std::uint32_t>> wide_bvh_closest_hit(const WideBvh& bvh, const Ray& ray,
-                                                                     Interval range, HitPrimitive&& hit_primitive);
+[[gnu::always_inline]] inline std::optional<std::pair<float, std::uint32_t>> wide_bvh_closest_hit(
+    const WideBvh& bvh, const Ray& ray, Interval range, HitPrimitive&& hit_primitive);
 template <class HitsPrimitive>
 bool wide_bvh_any_hit(const WideBvh& bvh, const Ray& ray, Interval range, HitsPrimitive&& hits_primitive);
 

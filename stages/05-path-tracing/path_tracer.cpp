@@ -76,7 +76,7 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
     // The two do not depend on each other, and drawn first, the direction's chain of dependent
     // steps (a division, a square root, polynomials) runs in the CPU's out-of-order window while
     // the light sample is worked on, instead of stalling at the end (docs/stage5.md, the speed
-    // ladder: 6-8 % more paths per second).
+    // ladder: 4-8 % more paths per second).
     const Vec2 u = rng.uniform2();
     const std::optional<BsdfSample> s = at.bsdf.sample(at.wo, u, rng.uniform());
     // BEGIN TASK stage5.path.next_event
