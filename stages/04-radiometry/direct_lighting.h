@@ -68,10 +68,17 @@ struct DirectLightSample {
 // Sampler interface per number; docs/stage5.md, the speed ladder).
 DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingPoint& at, float u_choice, Vec2 u,
                                       const OffsetPolicy& offset);
-inline Color direct_by_light_sampling(const LightingScene& scene, const ShadingPoint& at, Sampler& rng,
+// The same with its numbers drawn from `rng` (any sampler type, or the Sampler interface): the
+// choice first, then the point.
+template <class Numbers>
+DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingPoint& at, Numbers& rng,
                                       const OffsetPolicy& offset) {
   const float u_choice = rng.uniform();
-  return sample_direct_light(scene, at, u_choice, rng.uniform2(), offset).value;
+  return sample_direct_light(scene, at, u_choice, rng.uniform2(), offset);
+}
+inline Color direct_by_light_sampling(const LightingScene& scene, const ShadingPoint& at, Sampler& rng,
+                                      const OffsetPolicy& offset) {
+  return sample_direct_light(scene, at, rng, offset).value;
 }
 
 // The radiance arriving along a camera ray: what the first surface emits plus, for a non-delta

@@ -81,8 +81,7 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
     const std::optional<BsdfSample> s = at.bsdf.sample(at.wo, u, rng.uniform());
     // BEGIN TASK stage5.path.next_event
     if (samples_lights && !at.bsdf.is_delta()) {
-      const float u_choice = rng.uniform();
-      const DirectLightSample light = sample_direct_light(scene, at, u_choice, rng.uniform2(), options.offset);
+      const DirectLightSample light = sample_direct_light(scene, at, rng, options.offset);
       const float w = integrator == PathIntegrator::mis ? power_heuristic(light.pdf, at.bsdf.pdf(at.wo, light.wi)) : 1.0f;
       radiance += beta * light.value * w;
     }
