@@ -63,9 +63,9 @@ struct DirectLightSample {
 
 // Task stage4.direct.light_sampling. One emitter chosen by power (probability P) with `u_choice`,
 // one point on it (solid-angle density p) with `u`, a shadow ray: f_r Le cos(theta_i) / (P p).
-// The caller draws the numbers: the estimate is a plain function of them (a test can pick them),
-// and the path tracer's sampler stays a concrete type in its own loop (no call through the
-// Sampler interface per number; docs/stage5.md, the speed ladder).
+// The estimate is a plain function of the numbers (a test can pick them); the overload below draws
+// them from a sampler of any type, so the path tracer's stays a concrete type in its own loop (no
+// call through the Sampler interface per number; docs/stage5.md, the speed ladder).
 DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingPoint& at, float u_choice, Vec2 u,
                                       const OffsetPolicy& offset);
 // The same with its numbers drawn from `rng` (any sampler type, or the Sampler interface): the
