@@ -78,11 +78,12 @@ double time_to_reach(const std::vector<Point>& points, double target) {
 int main(int argc, char** argv) {
   using namespace rt;
   using namespace rt::bench;
-  if (argc != 2) {
+  const bool throughput_only = argc == 2 && std::string(argv[1]) == "--throughput";
+  // Any other option (--help) is not taken for the name of the file to write.
+  if (argc != 2 || (argv[1][0] == '-' && !throughput_only)) {
     std::fprintf(stderr, "usage: path_error_vs_time OUT.csv   (or --throughput: part 1 alone, about a minute)\n");
     return 2;
   }
-  const bool throughput_only = std::string(argv[1]) == "--throughput";
   const Cornell c;
 
   // Best of three runs each, alternating 1 and 2 threads, so that a burst of other work on the

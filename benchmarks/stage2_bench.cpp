@@ -1,7 +1,8 @@
-// Stage 2 timings: the two triangle tests on the same rays, and whole renders of the Whitted scene
+// Stage 2 timings: the triangle tests on the same rays, and whole renders of the Whitted scene
 // and the point-lit Cornell box. Run: build/release/bin/stage2_bench
 #include "01-ray-casting/render.h"
 #include "experiments/triangle_leaks.h"
+#include "02-whitted/triangle_kind.h"
 #include "02-whitted/whitted.h"
 #include "common/random.h"
 
@@ -56,6 +57,37 @@ BENCHMARK(BM_Triangle<TriangleMethod::moller_trumbore, false>)->Name("BM_Triangl
 BENCHMARK(BM_Triangle<TriangleMethod::watertight, false>)->Name("BM_TriangleMostlyMissesWatertight");
 BENCHMARK(BM_Triangle<TriangleMethod::moller_trumbore, true>)->Name("BM_TriangleAllHitMollerTrumbore");
 BENCHMARK(BM_Triangle<TriangleMethod::watertight, true>)->Name("BM_TriangleAllHitWatertight");
+
+// The same pairs as a BVH's leaf loop meets them: each ray prepared once beforehand (TriangleRay)
+// and each triangle stored as its kind stores it (TriangleCorners), so only the test is timed, as
+// TriangleKind::intersect calls it. The lanes pay here; in the loop above their per-ray broadcast
+// and the corners' transposition, made anew for every pair, cost more than they save.
+template <TriangleMethod Method, bool AllHit>
+void BM_TriangleInLeaf(benchmark::State& state) {
+  const TrianglePairs pairs = make_pairs(AllHit);
+  std::vector<TriangleRay> rays;
+  std::vector<TriangleCorners> triangles;
+  for (size_t k = 0; k < pairs.rays.size(); ++k) {
+    rays.emplace_back(pairs.rays[k]);
+    const auto& v = pairs.triangles[k];
+    triangles.emplace_back(v[0], v[1], v[2]);
+  }
+  TriangleKind::Store store;
+  store.method = Method;
+  size_t i = 0, hits = 0;
+  for (auto _ : state) {
+    const auto hit = TriangleKind::intersect(store, triangles[i], rays[i], Interval::positive());
+    hits += hit ? 1 : 0;
+    benchmark::DoNotOptimize(hit);
+    i = (i + 1) & 4095;
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["hit_fraction"] = double(hits) / double(state.iterations());
+}
+BENCHMARK(BM_TriangleInLeaf<TriangleMethod::watertight, false>)->Name("BM_TriangleInLeafMostlyMissesWatertight");
+BENCHMARK(BM_TriangleInLeaf<TriangleMethod::watertight_lanes, false>)->Name("BM_TriangleInLeafMostlyMissesLanes");
+BENCHMARK(BM_TriangleInLeaf<TriangleMethod::watertight, true>)->Name("BM_TriangleInLeafAllHitWatertight");
+BENCHMARK(BM_TriangleInLeaf<TriangleMethod::watertight_lanes, true>)->Name("BM_TriangleInLeafAllHitLanes");
 
 // A whole scene at 160 x 100 (Whitted) or 100 x 100 (Cornell), 1 spp, one thread.
 void render_scene(benchmark::State& state, const char* file, int width, int height) {

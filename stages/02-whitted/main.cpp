@@ -32,9 +32,11 @@ int main(int argc, char** argv) {
         app.add_option("--epsilon", whitted.offset.epsilon, "Offset distance for --offset fixed")
             ->check(finite_range(0.0, 3.0e38));
         app.add_option("--triangle", triangle_method,
-                       "Ray-triangle test: watertight (default) or moller-trumbore")
+                       "Ray-triangle test: watertight (default), watertight-lanes (the same answers, the "
+                       "corners in SIMD lanes) or moller-trumbore")
             ->transform(CLI::CheckedTransformer(std::map<std::string, TriangleMethod>{
                 {"watertight", TriangleMethod::watertight},
+                {"watertight-lanes", TriangleMethod::watertight_lanes},
                 {"moller-trumbore", TriangleMethod::moller_trumbore}}));
       },
       [&] {

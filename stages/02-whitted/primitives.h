@@ -25,7 +25,7 @@
 //                     bounding sphere (a mesh); together they cover [0, size)
 #pragma once
 
-#include "02-whitted/triangle_intersection.h"
+#include "02-whitted/triangle_ray.h"
 #include "common/aabb.h"
 #include "common/hit.h"
 #include "common/interval.h"

@@ -1,9 +1,20 @@
 #include "02-whitted/triangle_intersection.h"
 
+#include "02-whitted/triangle_ray.h"
 #include "common/task.h"
 
-
 namespace rt {
+
+std::optional<TriangleHit> intersect_triangle(TriangleMethod method, const TriangleRay& ray, Vec3 v0, Vec3 v1,
+                                              Vec3 v2, Interval range) {
+  switch (method) {
+    case TriangleMethod::moller_trumbore: return intersect_triangle_moller_trumbore(ray.ray, v0, v1, v2, range);
+    case TriangleMethod::watertight: return intersect_triangle_watertight(ray.watertight, v0, v1, v2, range);
+    case TriangleMethod::watertight_lanes:
+      return intersect_triangle_lanes(ray.watertight, ray.lanes, TriangleCorners(v0, v1, v2), range);
+  }
+  return std::nullopt;
+}
 
 std::optional<TriangleHit> intersect_triangle_moller_trumbore(const Ray& ray, Vec3 v0, Vec3 v1, Vec3 v2,
                                                               Interval range) {

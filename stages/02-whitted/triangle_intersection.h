@@ -30,6 +30,19 @@ struct TriangleHit {
 std::optional<TriangleHit> intersect_triangle_moller_trumbore(const Ray& ray, Vec3 v0, Vec3 v1, Vec3 v2,
                                                               Interval range);
 
+// The bound on the rounding error of the watertight test's t (Pharr, Jakob & Humphreys, Physically
+// Based Rendering, 4th ed., section 6.8.4): from bounds on the sheared coordinates (the largest
+// moduli max_x, max_y, max_z of the three corners' x', y', z'), then on the edge functions (the
+// largest modulus max_edge), then on t = (U z'_a + V z'_b + W z'_c) / det. A hit with t not above it
+// may be rounding noise: a ray that starts on the triangle.
+inline float watertight_t_error_bound(float max_x, float max_y, float max_z, float max_edge, float inv_det) {
+  const float error_z = gamma_bound(3) * max_z;
+  const float error_x = gamma_bound(5) * (max_x + max_z);
+  const float error_y = gamma_bound(5) * (max_y + max_z);
+  const float error_edge = 2.0f * (gamma_bound(2) * max_x * max_y + error_y * max_x + error_x * max_y);
+  return 3.0f * (gamma_bound(3) * max_edge * max_z + error_edge * max_z + error_z * max_edge) * std::abs(inv_det);
+}
+
 // Task stage2.triangle.watertight. Woop, Benthin & Wald, "Watertight Ray/Triangle Intersection",
 // JCGT 2(1), 2013. Move the origin to 0, permute the axes so that the ray's largest component is
 // z, and shear so that the ray becomes the +z axis. The inside test is then three 2D edge
@@ -57,25 +70,6 @@ std::optional<TriangleHit> intersect_triangle_watertight(const WatertightRay& ra
 inline std::optional<TriangleHit> intersect_triangle_watertight(const Ray& ray, Vec3 v0, Vec3 v1, Vec3 v2,
                                                                 Interval range) {
   return intersect_triangle_watertight(WatertightRay(ray), v0, v1, v2, range);
-}
-
-enum class TriangleMethod { moller_trumbore, watertight };
-
-// A ray with what either test needs, prepared once.
-struct TriangleRay {
-  Ray ray;
-  WatertightRay watertight;
-  explicit TriangleRay(const Ray& r) : ray(r), watertight(r) {}
-};
-
-inline std::optional<TriangleHit> intersect_triangle(TriangleMethod method, const TriangleRay& ray, Vec3 v0,
-                                                     Vec3 v1, Vec3 v2, Interval range) {
-  return method == TriangleMethod::watertight ? intersect_triangle_watertight(ray.watertight, v0, v1, v2, range)
-                                              : intersect_triangle_moller_trumbore(ray.ray, v0, v1, v2, range);
-}
-inline std::optional<TriangleHit> intersect_triangle(TriangleMethod method, const Ray& ray, Vec3 v0, Vec3 v1,
-                                                     Vec3 v2, Interval range) {
-  return intersect_triangle(method, TriangleRay(ray), v0, v1, v2, range);
 }
 
 // Definitions of the watertight test (see above for why they are here).
@@ -141,18 +135,12 @@ inline WatertightRay::WatertightRay(const Ray& ray) : origin(ray.origin), direct
   if (!range.surrounds(t)) return std::nullopt;
   // A ray that starts ON the triangle (a secondary ray from an axis-aligned wall, where the offset
   // along the normal is tiny) gets a t that is rounding noise of the size of the vertex
-  // coordinates. Refuse any t not above its own error bound (PBR 4th ed. section 6.8.4: bounds
-  // on the sheared coordinates, then on U, V, W, then on t).
+  // coordinates. Refuse any t not above its own error bound (watertight_t_error_bound).
   const float max_z = std::max({std::abs(az), std::abs(bz), std::abs(cz)});
   const float max_x = std::max({std::abs(ax), std::abs(bx), std::abs(cx)});
   const float max_y = std::max({std::abs(ay), std::abs(by), std::abs(cy)});
-  const float error_z = gamma_bound(3) * max_z;
-  const float error_x = gamma_bound(5) * (max_x + max_z);
-  const float error_y = gamma_bound(5) * (max_y + max_z);
-  const float error_edge = 2.0f * (gamma_bound(2) * max_x * max_y + error_y * max_x + error_x * max_y);
   const float max_edge = std::max({std::abs(u), std::abs(v), std::abs(w)});
-  const float error_t =
-      3.0f * (gamma_bound(3) * max_edge * max_z + error_edge * max_z + error_z * max_edge) * std::abs(inv_det);
+  const float error_t = watertight_t_error_bound(max_x, max_y, max_z, max_edge, inv_det);
   if (!(t > error_t)) return std::nullopt;
   return TriangleHit{t, v * inv_det, w * inv_det};
   // PLACEHOLDER

@@ -29,7 +29,8 @@ Hit TriangleKind::hit_record(const Store& store, const PrimitiveHit& found, cons
   const std::uint32_t m = store.mesh_of[found.index];
   const Placed<TriangleMesh>& placed = store.meshes[m];
   const size_t triangle = found.index - store.first[m];
-  const auto [v0, v1, v2] = hot(store, found.index);
+  const TriangleCorners corners = hot(store, found.index);
+  const Vec3 v0 = corners.corner(0), v1 = corners.corner(1), v2 = corners.corner(2);
   // BEGIN TASK stage2.mesh.hit_record
   const TriangleMesh& mesh = placed.geometry;
   const Vec3 b(1.0f - found.b1 - found.b2, found.b1, found.b2);

@@ -5,7 +5,6 @@
 
 #include "02-whitted/primitives.h"
 
-#include <array>
 
 namespace rt {
 
@@ -18,7 +17,7 @@ struct TriangleKind {
 
     void add_mesh(TriangleMesh mesh, int material, int shape);
   };
-  using Hot = std::array<Vec3, 3>;  // the corners, copied out of the mesh
+  using Hot = TriangleCorners;  // the corners, copied out of the mesh axis by axis
 
   static bool add(Store& store, const Shape& shape, int index);
   static size_t size(const Store& store) { return store.mesh_of.size(); }
@@ -26,26 +25,32 @@ struct TriangleKind {
     const std::uint32_t m = store.mesh_of[i];
     const TriangleMesh& mesh = store.meshes[m].geometry;
     const auto& c = mesh.triangles[i - store.first[m]];
-    return {mesh.positions[c[0]], mesh.positions[c[1]], mesh.positions[c[2]]};
+    return TriangleCorners(mesh.positions[c[0]], mesh.positions[c[1]], mesh.positions[c[2]]);
   }
-  static Aabb bounds(const Hot& corners) {
+  static Aabb bounds(const Hot& triangle) {
     Aabb box;
-    for (const Vec3& p : corners) box.expand(p);
+    for (int i = 0; i < 3; ++i) box.expand(triangle.corner(i));
     return box;
   }
   // Always inlined, so that a BVH's leaf loop holds the whole test (left to itself, GCC stops
   // inlining it once the watertight test is inlined into it).
-  [[gnu::always_inline]] static std::optional<PrimitiveHit> intersect(const Store& store, const Hot& v,
+  [[gnu::always_inline]] static std::optional<PrimitiveHit> intersect(const Store& store, const Hot& triangle,
                                                                       const TriangleRay& ray, Interval range) {
-    // Each test's result converted on its own branch: merging the two optionals first passes the
-    // hit through memory, written in pieces and read back at once, which stalls the load (a failed
+    // Each test's result converted on its own branch: merging the optionals first passes the hit
+    // through memory, written in pieces and read back at once, which stalls the load (a failed
     // store-to-load forward; docs/stage5.md, the speed ladder).
-    if (store.method == TriangleMethod::watertight) {
-      if (const std::optional<TriangleHit> hit = intersect_triangle_watertight(ray.watertight, v[0], v[1], v[2], range))
+    if (store.method == TriangleMethod::watertight_lanes) {
+      if (const std::optional<TriangleHit> hit = intersect_triangle_lanes(ray.watertight, ray.lanes, triangle, range))
         return PrimitiveHit{hit->t, hit->b1, hit->b2};
       return std::nullopt;
     }
-    if (const std::optional<TriangleHit> hit = intersect_triangle_moller_trumbore(ray.ray, v[0], v[1], v[2], range))
+    const Vec3 v0 = triangle.corner(0), v1 = triangle.corner(1), v2 = triangle.corner(2);
+    if (store.method == TriangleMethod::watertight) {
+      if (const std::optional<TriangleHit> hit = intersect_triangle_watertight(ray.watertight, v0, v1, v2, range))
+        return PrimitiveHit{hit->t, hit->b1, hit->b2};
+      return std::nullopt;
+    }
+    if (const std::optional<TriangleHit> hit = intersect_triangle_moller_trumbore(ray.ray, v0, v1, v2, range))
       return PrimitiveHit{hit->t, hit->b1, hit->b2};
     return std::nullopt;
   }

@@ -8,8 +8,7 @@
 #pragma once
 
 #include "03-acceleration/bvh.h"
-
-#include <cstring>
+#include "common/float4.h"
 
 namespace rt {
 
@@ -36,17 +35,6 @@ struct WideBvh {
 // leaves and the primitive order (Bvh::order) are the binary tree's.
 WideBvh collapse_to_wide(const Bvh& bvh);
 
-// Four floats as one SSE register (GCC's vector extensions: +, -, * and comparisons act lane by
-// lane, and `c ? a : b` with a lane mask c picks per lane), so the four-box test below is written
-// once, for all lanes, and compiles to one instruction per line.
-using Float4 = float __attribute__((vector_size(16)));
-
-inline Float4 load4(const float* p) {
-  Float4 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
 // The slab test (stage3.aabb.slab) on a node's four boxes at once. Returns a bit per child, set
 // when the ray meets its box within `range`; t_enter[i] is child i's entry distance.
 [[gnu::always_inline]] inline unsigned intersect_wide_node(const WideBvhNode& node, const RayInverse& ray, Interval range,
@@ -72,12 +60,7 @@ inline Float4 load4(const float* p) {
   exit = far_ty < exit ? far_ty : exit;
   exit = far_tz < exit ? far_tz : exit;
   std::memcpy(t_enter, &enter, sizeof enter);
-  const auto inside = enter <= exit;  // all bits set in the lanes whose box is hit
-#if defined(__SSE__)
-  return unsigned(__builtin_ia32_movmskps(reinterpret_cast<Float4>(inside)));  // the lanes' sign bits
-#else
-  return unsigned(inside[0] & 1) | unsigned(inside[1] & 2) | unsigned(inside[2] & 4) | unsigned(inside[3] & 8);
-#endif
+  return lane_mask(enter <= exit);
 }
 
 // The contracts of bvh_closest_hit and bvh_any_hit (bvh.h), over the wide tree. The closest-hit

@@ -25,7 +25,9 @@ struct LightingOptions {
   // Area by default: on the Cornell box solid angle lowers the error per sample by only 1.5 % and
   // costs 22 % more time per sample (docs/stage4.md, "Sampling a rectangle light").
   RectangleSampling rectangle_sampling = RectangleSampling::area;
-  TriangleMethod triangle_method = TriangleMethod::watertight;
+  // Stage 2's watertight test with the corners in SIMD lanes: its answers bit for bit, faster
+  // (docs/stage5.md, the speed ladder).
+  TriangleMethod triangle_method = TriangleMethod::watertight_lanes;
 };
 
 class LightingScene : public SurfaceScene<LightingPrimitives> {

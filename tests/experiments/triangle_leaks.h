@@ -3,7 +3,7 @@
 // Every such ray must hit some triangle; one that hits none has leaked through a crack.
 #pragma once
 
-#include "02-whitted/triangle_intersection.h"
+#include "02-whitted/triangle_ray.h"
 #include "common/triangle_mesh.h"
 
 #include <cstdint>

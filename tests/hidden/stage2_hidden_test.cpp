@@ -2,7 +2,7 @@
 // double precision, and the optics at random angles against Snell's law and the Fresnel equations
 // evaluated here.
 #include "02-whitted/optics.h"
-#include "02-whitted/triangle_intersection.h"
+#include "02-whitted/triangle_ray.h"
 #include "common/random.h"
 
 #include <gtest/gtest.h>

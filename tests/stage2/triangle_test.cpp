@@ -1,4 +1,4 @@
-#include "02-whitted/triangle_intersection.h"
+#include "02-whitted/triangle_ray.h"
 #include "experiments/triangle_leaks.h"
 #include "common/random.h"
 
