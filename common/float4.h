@@ -20,12 +20,6 @@ inline Float4 load4(const float* p) {
   std::memcpy(&v, p, sizeof v);
   return v;
 }
-// Three floats, the fourth lane 0: a row of three that is not padded to four in memory.
-inline Float4 load3(const float* p) {
-  Float4 v{};
-  std::memcpy(&v, p, 3 * sizeof(float));
-  return v;
-}
 inline Float4 broadcast(float x) { return Float4{x, x, x, x}; }
 inline Float4 abs4(Float4 v) {
   return reinterpret_cast<Float4>(reinterpret_cast<Int4>(v) & (Int4{} + 0x7fffffff));  // the sign bits cleared

@@ -3,8 +3,8 @@
 // same arithmetic three times, once per corner: move the corner to the ray's origin, shear it, and
 // take the edge function opposite it. Here each of those lines is one instruction for all three
 // corners, and the permutation of the axes becomes the choice of which rows to load: the corners
-// are stored axis by axis (TriangleCorners), so the ray's kx, ky and kz index whole rows, as the
-// 4-wide node's near planes are indexed by the ray's signs (03-acceleration/wide_bvh.h).
+// are stored axis by axis (TriangleCorners), so the ray's kx, ky and kz index whole rows (as stage
+// 3's 4-wide node is indexed by the signs of the ray's direction).
 //
 // Every lane does, operation for operation, what the scalar test does for its corner, and the
 // sums over the lanes are added in the scalar test's order, so the answer is the scalar test's

@@ -49,7 +49,9 @@ int main(int argc, char** argv) {
             ->check(CLI::IsMember({"naive", "median", "middle", "sah"}));
         app.add_option("--leaf-size", leaf_size, "Largest leaf a BVH builder makes without trying to split")
             ->transform(decimal(1, 255));
-        app.add_flag("--wide", wide, "Traverse a 4-wide tree collapsed from the binary one (four box tests at once), testing triangles with their corners in SIMD lanes");
+        app.add_flag("--wide", wide,
+                     "Traverse a 4-wide tree collapsed from the binary one (four box tests at once), testing "
+                     "triangles with their corners in SIMD lanes");
         app.add_option("--debug", debug_name, "Debug view instead of shading: none, normal, depth, albedo")
             ->check(CLI::IsMember({"none", "normal", "depth", "albedo"}));
       },
