@@ -57,6 +57,8 @@ BENCHMARK(BM_Triangle<TriangleMethod::moller_trumbore, false>)->Name("BM_Triangl
 BENCHMARK(BM_Triangle<TriangleMethod::watertight, false>)->Name("BM_TriangleMostlyMissesWatertight");
 BENCHMARK(BM_Triangle<TriangleMethod::moller_trumbore, true>)->Name("BM_TriangleAllHitMollerTrumbore");
 BENCHMARK(BM_Triangle<TriangleMethod::watertight, true>)->Name("BM_TriangleAllHitWatertight");
+BENCHMARK(BM_Triangle<TriangleMethod::watertight_lanes, false>)->Name("BM_TriangleMostlyMissesWatertightLanes");
+BENCHMARK(BM_Triangle<TriangleMethod::watertight_lanes, true>)->Name("BM_TriangleAllHitWatertightLanes");
 
 // The same pairs as a BVH's leaf loop meets them: each ray prepared once beforehand (TriangleRay)
 // and each triangle stored as its kind stores it (TriangleCorners), so only the test is timed, as
