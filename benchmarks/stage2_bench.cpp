@@ -39,19 +39,27 @@ TrianglePairs make_pairs(bool all_hit) {
   return pairs;
 }
 
-template <TriangleMethod Method, bool AllHit>
-void BM_Triangle(benchmark::State& state) {
-  const TrianglePairs pairs = make_pairs(AllHit);
+// Times test(i) for the 4096 pairs in turn, and reports the share that hit.
+template <class Test>
+void time_pairs(benchmark::State& state, Test&& test) {
   size_t i = 0, hits = 0;
   for (auto _ : state) {
-    const auto& v = pairs.triangles[i];
-    const auto hit = intersect_triangle(Method, pairs.rays[i], v[0], v[1], v[2], Interval::positive());
+    const auto hit = test(i);
     hits += hit ? 1 : 0;
     benchmark::DoNotOptimize(hit);
     i = (i + 1) & 4095;
   }
   state.SetItemsProcessed(state.iterations());
   state.counters["hit_fraction"] = double(hits) / double(state.iterations());
+}
+
+template <TriangleMethod Method, bool AllHit>
+void BM_Triangle(benchmark::State& state) {
+  const TrianglePairs pairs = make_pairs(AllHit);
+  time_pairs(state, [&](size_t i) {
+    const auto& v = pairs.triangles[i];
+    return intersect_triangle(Method, pairs.rays[i], v[0], v[1], v[2], Interval::positive());
+  });
 }
 BENCHMARK(BM_Triangle<TriangleMethod::moller_trumbore, false>)->Name("BM_TriangleMostlyMissesMollerTrumbore");
 BENCHMARK(BM_Triangle<TriangleMethod::watertight, false>)->Name("BM_TriangleMostlyMissesWatertight");
@@ -76,15 +84,7 @@ void BM_TriangleInLeaf(benchmark::State& state) {
   }
   TriangleKind::Store store;
   store.method = Method;
-  size_t i = 0, hits = 0;
-  for (auto _ : state) {
-    const auto hit = TriangleKind::intersect(store, triangles[i], rays[i], Interval::positive());
-    hits += hit ? 1 : 0;
-    benchmark::DoNotOptimize(hit);
-    i = (i + 1) & 4095;
-  }
-  state.SetItemsProcessed(state.iterations());
-  state.counters["hit_fraction"] = double(hits) / double(state.iterations());
+  time_pairs(state, [&](size_t i) { return TriangleKind::intersect(store, triangles[i], rays[i], Interval::positive()); });
 }
 BENCHMARK(BM_TriangleInLeaf<TriangleMethod::watertight, false>)->Name("BM_TriangleInLeafMostlyMissesWatertight");
 BENCHMARK(BM_TriangleInLeaf<TriangleMethod::watertight_lanes, false>)->Name("BM_TriangleInLeafMostlyMissesLanes");
