@@ -30,23 +30,21 @@ struct TriangleCorners {
   Vec3 corner(int i) const { return Vec3(coordinate[0][i], coordinate[1][i], coordinate[2][i]); }
 };
 
-// What the lanes read of a prepared ray (stage 2's WatertightRay), once per ray: the permuted
-// axes, and the origin's coordinates along them and the shear, each in all four lanes.
+// A prepared ray's values (stage 2's WatertightRay) that the lanes read in all four lanes, made
+// once per ray: the origin's coordinates along the permuted axes, and the shear.
 struct LanesRay {
-  int kx, ky, kz;
   Float4 origin_x, origin_y, origin_z;
   Float4 shear_x, shear_y;
   float shear_z;
   explicit LanesRay(const WatertightRay& ray)
-      : kx(ray.kx), ky(ray.ky), kz(ray.kz),
-        origin_x(broadcast(component(ray.origin, ray.kx))),
+      : origin_x(broadcast(component(ray.origin, ray.kx))),
         origin_y(broadcast(component(ray.origin, ray.ky))),
         origin_z(broadcast(component(ray.origin, ray.kz))),
         shear_x(broadcast(ray.shear_x)), shear_y(broadcast(ray.shear_y)), shear_z(ray.shear_z) {}
 };
 
 // Task stage2.triangle.lanes. The contract of intersect_triangle_watertight, answered for the
-// same prepared ray (`ray`, and `lanes` made from it) bit for bit as it answers. Lane i of each
+// same prepared ray (`ray`, its axes, and `lanes` made from it) bit for bit as it answers. Lane i of each
 // register holds corner i (a, b, c of the scalar test); lane 3 is unused.
 //   1. Rows kx, ky, kz (load4), each minus the origin's coordinate; x' = x - shear_x z, y' = y - shear_y z.
 //   2. The edge functions u, v, w in lanes 0, 1, 2: lane i takes the 2D cross product of the two
@@ -64,10 +62,9 @@ std::optional<TriangleHit> intersect_triangle_lanes(const WatertightRay& ray, co
                                                                                   const TriangleCorners& triangle,
                                                                                   Interval range) {
   // BEGIN TASK stage2.triangle.lanes
-  (void)ray;  // what the lanes read of it is in `lanes`
-  const Float4 z = load4(triangle.coordinate[lanes.kz]) - lanes.origin_z;
-  const Float4 x = load4(triangle.coordinate[lanes.kx]) - lanes.origin_x - lanes.shear_x * z;
-  const Float4 y = load4(triangle.coordinate[lanes.ky]) - lanes.origin_y - lanes.shear_y * z;
+  const Float4 z = load4(triangle.coordinate[ray.kz]) - lanes.origin_z;
+  const Float4 x = load4(triangle.coordinate[ray.kx]) - lanes.origin_x - lanes.shear_x * z;
+  const Float4 y = load4(triangle.coordinate[ray.ky]) - lanes.origin_y - lanes.shear_y * z;
   // Lane 0: u = cx by - cy bx; lane 1: v = ax cy - ay cx; lane 2: w = bx ay - by ax.
   // Lane i takes its corner's two neighbours, i - 1 and i + 1 (mod 3).
   const Float4 x_prev = __builtin_shufflevector(x, x, 2, 0, 1, 3), y_prev = __builtin_shufflevector(y, y, 2, 0, 1, 3);
