@@ -57,6 +57,11 @@ class Bsdf {
   bool is_delta() const {
     return std::holds_alternative<MirrorBrdf>(model_) || std::holds_alternative<DielectricBsdf>(model_);
   }
+  // Whether sample() reads u_lobe: only a model of two lobes does (Phong's diffuse and glossy
+  // parts, glass's reflection and refraction). A caller may skip drawing that number otherwise.
+  bool has_lobe_choice() const {
+    return std::holds_alternative<PhongBrdf>(model_) || std::holds_alternative<DielectricBsdf>(model_);
+  }
   const Model& model() const { return model_; }
 
  private:

@@ -227,6 +227,33 @@ TEST(BrdfProperties, NothingBelowTheSurface) {
   }
 }
 
+// A caller draws the lobe number only for a model that says it reads it (the path tracer saves a
+// number per bounce that way, and passes a constant otherwise): a model whose samples depend on
+// u_lobe and does not say so would always take the same lobe there.
+TEST(BrdfProperties, ModelsThatReadTheLobeNumberSaySo) {
+  std::vector<std::pair<std::string, Bsdf>> models = glossy_models();
+  models.emplace_back("mirror", Bsdf(MirrorBrdf{Color(0.9f)}));
+  models.emplace_back("glass entered", Bsdf(DielectricBsdf{1.0f, 1.5f}));
+  models.emplace_back("glass left", Bsdf(DielectricBsdf{1.5f, 1.0f}));
+  for (const auto& [name, bsdf] : models) {
+    int differ = 0;
+    for (int i = 0; i < 16; ++i)
+      for (int j = 0; j < 16; ++j) {
+        const Vec2 u((i + 0.5f) / 16.0f, (j + 0.5f) / 16.0f);
+        const Vec3 wo = direction(0.1f + 0.09f * float(i), 0.4f * float(j));
+        const auto low = bsdf.sample(wo, u, 0.01f), high = bsdf.sample(wo, u, 0.99f);
+        if (low.has_value() != high.has_value() || (low && (low->wi != high->wi || low->weight != high->weight)))
+          ++differ;
+      }
+    if (differ > 0) {
+      EXPECT_TRUE(bsdf.has_lobe_choice()) << name << ": " << differ << " of 256 samples depend on u_lobe";
+    }
+    if (name.starts_with("phong mixed") || name.starts_with("glass")) {
+      EXPECT_GT(differ, 0) << name << ": two lobes, so u_lobe must matter somewhere";
+    }
+  }
+}
+
 TEST(DeltaLobes, MirrorReflectsAboutTheNormal) {
   const Bsdf mirror(MirrorBrdf{Color(0.9f, 0.8f, 0.7f)});
   EXPECT_TRUE(mirror.is_delta());
