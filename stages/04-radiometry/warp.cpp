@@ -45,12 +45,13 @@ Vec2 sample_uniform_disk(Vec2 u) {
   //   else:      phi = pi/2 - (pi/4) (a/b),  (x, y) = r (sin theta, cos theta), theta = (pi/4) (a/b).
   // Both cases need the cosine and sine of theta in [-pi/4, pi/4] only, so they share one
   // computation, and the two come from a short polynomial (common/math.h) instead of a libm call
-  // built for any angle.
+  // built for any angle. Which case applies is a coin toss for a random u, so the values are
+  // picked by select() (common/math.h), with no jump that would be mispredicted half the time.
   const bool a_wins = std::abs(a) > std::abs(b);
-  const float r = a_wins ? a : b;
-  const float theta = 0.25f * kPi * ((a_wins ? b : a) / r);
+  const float r = select(a_wins, a, b);
+  const float theta = 0.25f * kPi * (select(a_wins, b, a) / r);
   const Vec2 cs = cos_sin_quarter_turn(theta);
-  return r * (a_wins ? cs : Vec2(cs.y, cs.x));
+  return r * Vec2(select(a_wins, cs.x, cs.y), select(a_wins, cs.y, cs.x));
   // PLACEHOLDER
   // report_unfinished_task("stage4.warp.concentric_disk");
   // (void)u;

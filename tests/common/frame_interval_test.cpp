@@ -100,5 +100,17 @@ TEST(CosSinQuarterTurn, WithinAnUlpOfTheLibraryOverItsRange) {
   EXPECT_LE(worst, 0x1p-23) << "largest error " << worst;
 }
 
+TEST(Select, ReturnsTheChosenValueBitForBit) {
+  // Either value whole, whatever its bits: signed zeros, infinities, NaNs with a payload.
+  auto bits = [](float v) { return std::bit_cast<std::uint32_t>(v); };
+  const float nan = std::bit_cast<float>(0x7fc01234u);
+  const float values[] = {0.0f, -0.0f, 1.5f, -2.25f, kInfinity, -kInfinity, nan, std::numeric_limits<float>::denorm_min()};
+  for (const float a : values)
+    for (const float b : values) {
+      EXPECT_EQ(bits(select(true, a, b)), bits(a));
+      EXPECT_EQ(bits(select(false, a, b)), bits(b));
+    }
+}
+
 }  // namespace
 }  // namespace rt
