@@ -45,6 +45,12 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
   Vec3 previous_point(0.0f);
 
   for (int bounce = 0;; ++bounce) {
+    // The two numbers of this bounce's direction are drawn first, before the ray is traced, though
+    // they are used only after it. They depend on nothing the ray finds, and drawn here, their
+    // chain of hashes and multiplications runs in the CPU's out-of-order window while the
+    // traversal waits on loads and mispredicted jumps; drawn where they are used, that chain stood
+    // between the hit and the next ray (docs/stage5.md, the speed ladder, steps 11 and 17).
+    const Vec2 u = rng.uniform2();
     const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
     if (!hit) {
       radiance += beta * scene.background();
@@ -72,13 +78,11 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
     if (integrator == PathIntegrator::naive ? bounce >= options.max_depth : bounce >= options.max_bounces) break;
 
     const ShadingPoint at = make_shading_point(scene, *hit, -ray.direction);
-    // The bounce's direction is drawn before the light sample, though it is used only after it.
-    // The two do not depend on each other, and drawn first, the direction's chain of dependent
-    // steps (a division, a square root, polynomials) runs in the CPU's out-of-order window while
-    // the light sample is worked on, instead of stalling at the end (docs/stage5.md, the speed
-    // ladder: 4-8 % more paths per second). A number to choose a lobe is drawn only for a model
-    // that has more than one (step 15).
-    const Vec2 u = rng.uniform2();
+    // The direction is sampled before the light, though it is used only after it: the two do not
+    // depend on each other, and sampled first, the direction's chain of dependent steps (a
+    // division, polynomials, a square root) runs while the light sample is worked on, instead of
+    // stalling at the end of the bounce (the speed ladder, step 11). A number to choose a lobe is
+    // drawn only for a model that has more than one (step 15).
     const float u_lobe = at.bsdf.has_lobe_choice() ? rng.uniform() : 0.5f;
     const std::optional<BsdfSample> s = at.bsdf.sample(at.wo, u, u_lobe);
     // BEGIN TASK stage5.path.next_event
