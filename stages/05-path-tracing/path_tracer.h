@@ -54,7 +54,7 @@ float power_heuristic(float pdf_a, float pdf_b);
 
 // The radiance arriving along a camera ray, estimated by one path, with numbers drawn from `rng`.
 // The sampler's type is a template parameter, so that its calls compile into the path loop: a path
-// draws some nine numbers per bounce, and through the Sampler interface each would be a call the
+// draws five to seven numbers per bounce, and through the Sampler interface each would be a call the
 // compiler cannot see into (docs/stage5.md, the speed ladder). Defined in path_tracer.cpp for the
 // two samplers and for the interface itself (a caller that holds only a Sampler&).
 template <class Numbers>
