@@ -54,9 +54,10 @@ rate() {
 measure() {
   local core=$1 what=$2 bin=$3
   case $what in
-    cornell) taskset -c "$core" "$bin/stage5" --scene "$repo/assets/scenes/cornell-box.json" --out "$out/$core.pfm"                --width 128 --height 128 --spp 64 --threads 1 2>&1 | rate ;;
-    binary) taskset -c "$core" "$bin/stage3" --scene "$repo/assets/scenes/bunny.json" --out "$out/$core.pfm"                --spp 16 --threads 1 2>&1 | rate ;;
-    wide) taskset -c "$core" "$bin/stage3" --scene "$repo/assets/scenes/bunny.json" --out "$out/$core.pfm"                --spp 16 --threads 1 --wide 2>&1 | rate ;;
+    cornell) taskset -c "$core" "$bin/stage5" --scene "$repo/assets/scenes/cornell-box.json" --out "$out/$core.pfm" \
+               --width 128 --height 128 --spp 64 --threads 1 2>&1 | rate ;;
+    binary | wide) taskset -c "$core" "$bin/stage3" --scene "$repo/assets/scenes/bunny.json" --out "$out/$core.pfm" \
+               --spp 16 --threads 1 $([[ $what == wide ]] && echo --wide) 2>&1 | rate ;;
   esac
 }
 # WHAT: base and new at the same time on cores 0 and 1, then on 1 and 0; prints the four rates and
