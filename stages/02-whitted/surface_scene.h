@@ -80,8 +80,17 @@ std::optional<Hit> SurfaceScene<Set>::closest_hit(const Ray& ray, Interval range
     const SurfacePoint surface = plane_point(ray.at(plane_t), plane->geometry);
     return make_hit(ray, plane_t, surface.point, surface.error, plane->geometry.normal, plane->material, plane->shape);
   }
-  if (found) return primitives_->hit_record(*found, ray);
-  return std::nullopt;
+  if (!found) return std::nullopt;
+  // The record is built straight into the optional that is returned. Built apart and then copied
+  // in, it was read back with wider loads than the record's own stores, which the CPU cannot
+  // forward: a stall at every hit (docs/stage5.md, the speed ladder, step 18).
+  struct BuiltInPlace {
+    const SurfaceScene& scene;
+    const PrimitiveHit& found;
+    const Ray& ray;
+    operator Hit() const { return scene.primitives_->hit_record(found, ray); }
+  };
+  return std::optional<Hit>(std::in_place, BuiltInPlace{*this, *found, ray});
 }
 
 template <class Set>
