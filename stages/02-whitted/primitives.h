@@ -89,6 +89,10 @@ class PrimitiveSet {
     if constexpr (std::is_same_v<Kind<K>, Wanted>) return K;
     else return index_of<Wanted, K + 1>();
   }
+  template <class Wanted>
+  static constexpr bool contains() {
+    return (std::is_same_v<Kinds, Wanted> || ...);
+  }
   // The store of a kind named by type, for the code that knows which kind it wants.
   template <class Wanted>
   auto& store_of() { return store<index_of<Wanted>()>(); }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "02-whitted/ray_offset.h"
+#include "common/float4.h"
 #include "common/interval.h"
 #include "common/ray.h"
 #include "common/task.h"
@@ -34,13 +35,17 @@ std::optional<TriangleHit> intersect_triangle_moller_trumbore(const Ray& ray, Ve
 // Based Rendering, 4th ed., section 6.8.4): from bounds on the sheared coordinates (the largest
 // moduli max_x, max_y, max_z of the three corners' x', y', z'), then on the edge functions (the
 // largest modulus max_edge), then on t = (U z'_a + V z'_b + W z'_c) / det. A hit with t not above it
-// may be rounding noise: a ray that starts on the triangle.
-inline float watertight_t_error_bound(float max_x, float max_y, float max_z, float max_edge, float inv_det) {
-  const float error_z = gamma_bound(3) * max_z;
-  const float error_x = gamma_bound(5) * (max_x + max_z);
-  const float error_y = gamma_bound(5) * (max_y + max_z);
-  const float error_edge = 2.0f * (gamma_bound(2) * max_x * max_y + error_y * max_x + error_x * max_y);
-  return 3.0f * (gamma_bound(3) * max_edge * max_z + error_edge * max_z + error_z * max_edge) * std::abs(inv_det);
+// may be rounding noise: a ray that starts on the triangle. F is float, or Float4 for four
+// triangles at once (triangle_pack.h), lane by lane the same arithmetic.
+inline float magnitude(float x) { return std::abs(x); }
+inline Float4 magnitude(Float4 x) { return abs4(x); }
+template <class F>
+inline F watertight_t_error_bound(F max_x, F max_y, F max_z, F max_edge, F inv_det) {
+  const F error_z = gamma_bound(3) * max_z;
+  const F error_x = gamma_bound(5) * (max_x + max_z);
+  const F error_y = gamma_bound(5) * (max_y + max_z);
+  const F error_edge = 2.0f * (gamma_bound(2) * max_x * max_y + error_y * max_x + error_x * max_y);
+  return 3.0f * (gamma_bound(3) * max_edge * max_z + error_edge * max_z + error_z * max_edge) * magnitude(inv_det);
 }
 
 // Task stage2.triangle.watertight. Woop, Benthin & Wald, "Watertight Ray/Triangle Intersection",

@@ -3,6 +3,7 @@
 
 #include "02-whitted/triangle_intersection.h"
 #include "02-whitted/triangle_lanes.h"
+#include "02-whitted/triangle_pack.h"
 
 namespace rt {
 

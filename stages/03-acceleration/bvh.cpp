@@ -12,6 +12,11 @@
 
 namespace rt {
 
+float leaf_cost(int count, const BvhBuildOptions& options) {
+  if (options.wide && options.triangle_packs && count <= BvhBuildOptions::kPackSize) return BvhBuildOptions::kPackCost;
+  return BvhBuildOptions::kIntersectionCost * float(count);
+}
+
 SplitMethod split_method_from_name(const std::string& name) {
   if (name == "median") return SplitMethod::median;
   if (name == "middle") return SplitMethod::middle;
@@ -75,7 +80,7 @@ Iterator split_middle(Iterator begin, Iterator end, int axis, const Aabb& centro
 // Returns `end` when no split is cheaper than a leaf and the node is small enough to be one;
 // otherwise partitions [begin, end) at the best boundary and returns the split point.
 Iterator split_sah(Iterator begin, Iterator end, const Aabb& node_bounds, const Aabb& centroid_bounds,
-                   int max_leaf_size) {
+                   const BvhBuildOptions& options) {
   constexpr int kBins = BvhBuildOptions::kSahBins;
   // The bin of a centroid along an axis: kBins equal bins over the centroids' extent, the scale
   // kBins / extent computed once per axis (a multiplication per primitive, not a division).
@@ -137,7 +142,7 @@ Iterator split_sah(Iterator begin, Iterator end, const Aabb& node_bounds, const 
   const float split_cost = BvhBuildOptions::kTraversalCost +
                            BvhBuildOptions::kIntersectionCost * (area > 0.0f ? best_area_count / area : 0.0f);
   const auto count = int(end - begin);
-  if (count <= max_leaf_size && BvhBuildOptions::kIntersectionCost * float(count) <= split_cost) return end;
+  if (count <= options.max_leaf_size && leaf_cost(count, options) <= split_cost) return end;
   const Iterator split =
       std::partition(begin, end, [&](const BuildPrimitive& p) { return bin_of(p, best_axis) <= best_boundary; });
   return split == begin ? end : split;
@@ -209,7 +214,7 @@ class Builder {
         split = split_middle(begin, end, axis, centroid_bounds);
         if (split == end) split = split_median(begin, end, axis);
       } else {
-        split = split_sah(begin, end, bounds, centroid_bounds, options_.max_leaf_size);
+        split = split_sah(begin, end, bounds, centroid_bounds, options_);
         if (split == end && count > options_.max_leaf_size) split = split_median(begin, end, axis);
       }
     }

@@ -29,6 +29,10 @@ struct BvhBuildOptions {
   // Collapse the binary tree into a 4-wide one for traversal (wide_bvh.h). Same leaves, same
   // answers; fewer, cheaper box tests per ray.
   bool wide = false;
+  // In the 4-wide tree, store each leaf of one to four triangles as a pack (02-whitted/
+  // triangle_pack.h), tested in one SIMD test; false keeps every leaf slot by slot. The SAH
+  // builder then prices a leaf of up to kPackSize primitives as one pack test (leaf_cost).
+  bool triangle_packs = true;
   // Threads that may build subtrees at once; 0: one per core. The tree is the same for any count.
   int build_threads = 0;
   // SAH cost model (MacDonald & Booth 1990): C(split) = kTraversalCost + kIntersectionCost *
@@ -39,11 +43,22 @@ struct BvhBuildOptions {
   // 1/8 : 1 (1.24 vs 1.43 us per incoherent ray on the bunny), with fewer, fuller leaves.
   static constexpr float kTraversalCost = 1.0f;
   static constexpr float kIntersectionCost = 1.0f;
+  // A pack test of up to four triangles, against one triangle test. Measured (docs/stage3.md, the
+  // speed ladder, step 9): 1 to 2 build the same bunny tree and trace the meshes 2 % faster than
+  // 2.5, but make the Cornell box's leaves of big wall triangles so large that its paths take 5 %
+  // more instructions; 2.5 takes 3 % fewer than without packs; from 3 on, pairs of triangles are
+  // split into packs of one, and every scene is slower.
+  static constexpr float kPackCost = 2.5f;
+  static constexpr int kPackSize = 4;
   static constexpr int kSahBins = 16;
   // Below this depth every builder's own split is used; from it on, splits fall back to the
   // median, which halves the primitives, so depth <= kMaxFreeDepth + ceil(log2(n)) < kStackSize.
   static constexpr int kMaxFreeDepth = 36;
 };
+
+// The SAH cost of a leaf of `count` primitives: a test per primitive, or, where the leaves become
+// triangle packs (a 4-wide tree with triangle_packs), one pack test for up to kPackSize of them.
+float leaf_cost(int count, const BvhBuildOptions& options);
 
 // 32 bytes, two to a cache line. The two children of an interior node are stored side by side,
 // so only the first one's index is kept, and the traversal, which tests both children's boxes at

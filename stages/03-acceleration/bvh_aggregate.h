@@ -4,10 +4,14 @@
 #pragma once
 
 #include "02-whitted/aggregate.h"
+#include "02-whitted/triangle_kind.h"
 #include "03-acceleration/bvh.h"
 #include "03-acceleration/wide_bvh.h"
 
+#include <algorithm>
 #include <array>
+#include <numeric>
+#include <span>
 
 namespace rt {
 
@@ -19,9 +23,10 @@ template <class Set>
 class FlatPrimitives {
  public:
   FlatPrimitives() = default;
-  // Slot s holds the primitive numbered order[s] in the set's own numbering (kind by kind, as
-  // bounds_in_set_order lists them); an empty order keeps that numbering.
-  explicit FlatPrimitives(std::shared_ptr<const Set> set, const std::vector<std::uint32_t>& order = {});
+  // Every primitive, in the set's own numbering (kind by kind, as bounds_in_set_order lists them).
+  explicit FlatPrimitives(std::shared_ptr<const Set> set);
+  // Slot s holds the primitive numbered numbers[s] in the set's own numbering.
+  FlatPrimitives(std::shared_ptr<const Set> set, std::span<const std::uint32_t> numbers);
   // Every primitive's box in the set's own numbering: what a BVH is built from.
   static std::vector<Aabb> bounds_in_set_order(const Set& set);
   size_t size() const { return hot_.size(); }
@@ -81,18 +86,33 @@ class BvhAggregate : public Aggregate {
   const std::optional<WideBvh>& wide_bvh() const { return wide_; }
   // The binary tree's figures, taken before a collapse released it.
   const BvhStats& stats() const { return stats_; }
-  size_t size() const { return flat_.size(); }
-  // Memory of the acceleration structure: nodes, leaf order and the slots' copied primitives.
+  size_t size() const { return primitives_; }
+  // The 4-wide tree's leaves stored as triangle packs (BvhBuildOptions::triangle_packs).
+  size_t packs() const { return packs_.size(); }
+  // Memory of the acceleration structure: nodes, leaf order, packs and the slots' copied primitives.
   size_t bytes() const {
     return bvh_.nodes.size() * sizeof(BvhNode) + (wide_ ? wide_->nodes.size() * sizeof(WideBvhNode) : 0) +
-           bvh_.order.size() * sizeof(std::uint32_t) + flat_.bytes();
+           bvh_.order.size() * sizeof(std::uint32_t) + packs_.size() * (sizeof(TrianglePack) + sizeof(PackTriangles)) +
+           flat_.bytes();
   }
 
+  // A leaf of the 4-wide tree whose count has this bit set is a pack: child is the pack's index.
+  static constexpr std::uint32_t kPackedLeaf = 1u << 31;
+
  private:
-  FlatPrimitives<Set> flat_;
+  static_assert(BvhBuildOptions::kPackSize == TrianglePack::kLanes, "the builder prices the packs this aggregate makes");
+  // Which triangle each lane of a pack holds: its index in the triangle kind's store.
+  using PackTriangles = std::array<std::uint32_t, TrianglePack::kLanes>;
+  // Stores the 4-wide tree's leaves: as triangle packs where they can be, the rest in flat_.
+  void store_wide_leaves(std::shared_ptr<const Set> primitives, const BvhBuildOptions& options);
+
+  size_t primitives_ = 0;
+  FlatPrimitives<Set> flat_;  // the binary tree's leaves; the 4-wide tree's leaves that are not packs
   Bvh bvh_;
   BvhStats stats_;
   std::optional<WideBvh> wide_;  // when built with BvhBuildOptions::wide
+  std::vector<TrianglePack, CacheLineAllocator<TrianglePack>> packs_;
+  std::vector<PackTriangles> pack_triangles_;
 };
 template <class Set>
 BvhAggregate(std::shared_ptr<Set>, const BvhBuildOptions&) -> BvhAggregate<std::remove_const_t<Set>>;
@@ -107,19 +127,34 @@ AggregateFactory<Set> bvh_aggregate_factory(const BvhBuildOptions& options) {
   return [options](std::shared_ptr<const Set> p) { return std::make_unique<BvhAggregate<Set>>(std::move(p), options); };
 }
 
+// first[k]: the number of kind k's first primitive in the set's numbering; first[kKinds] is the
+// number of primitives.
 template <class Set>
-FlatPrimitives<Set>::FlatPrimitives(std::shared_ptr<const Set> set, const std::vector<std::uint32_t>& order)
-    : set_(std::move(set)) {
-  // first[k]: the number of kind k's first primitive in the set's numbering.
+std::array<std::uint32_t, Set::kKinds + 1> first_of_each_kind(const Set& set) {
   std::array<std::uint32_t, Set::kKinds + 1> first{};
   Set::for_each_kind([&](auto k) {
-    first[k + 1] = first[k] + std::uint32_t(Set::template Kind<k>::size(set_->template store<k>()));
+    first[k + 1] = first[k] + std::uint32_t(Set::template Kind<k>::size(set.template store<k>()));
   });
-  const size_t count = first[Set::kKinds];
-  hot_.reserve(count);
-  index_.reserve(count);
-  for (size_t slot = 0; slot < count; ++slot) {
-    const std::uint32_t number = order.empty() ? std::uint32_t(slot) : order[slot];
+  return first;
+}
+
+inline std::vector<std::uint32_t> numbers_up_to(size_t count) {
+  std::vector<std::uint32_t> numbers(count);
+  std::iota(numbers.begin(), numbers.end(), 0u);
+  return numbers;
+}
+
+template <class Set>
+FlatPrimitives<Set>::FlatPrimitives(std::shared_ptr<const Set> set)
+    : FlatPrimitives(set, numbers_up_to(set->size())) {}
+
+template <class Set>
+FlatPrimitives<Set>::FlatPrimitives(std::shared_ptr<const Set> set, std::span<const std::uint32_t> numbers)
+    : set_(std::move(set)) {
+  const std::array<std::uint32_t, Set::kKinds + 1> first = first_of_each_kind(*set_);
+  hot_.reserve(numbers.size());
+  index_.reserve(numbers.size());
+  for (const std::uint32_t number : numbers) {
     size_t kind = 0;
     while (number >= first[kind + 1]) ++kind;
     const std::uint32_t i = number - first[kind];
@@ -163,18 +198,67 @@ bool NaiveAggregate<Set>::occluded(const Ray& ray, Interval range) const {
 }
 
 template <class Set>
-BvhAggregate<Set>::BvhAggregate(std::shared_ptr<const Set> primitives, const BvhBuildOptions& options) {
+BvhAggregate<Set>::BvhAggregate(std::shared_ptr<const Set> primitives, const BvhBuildOptions& options)
+    : primitives_(primitives->size()) {
   bvh_ = build_bvh(FlatPrimitives<Set>::bounds_in_set_order(*primitives), options);
   stats_ = bvh_.stats();
-  // The slots are copied out in leaf order straight away (slot = leaf slot), not copied and then
-  // reordered: on a 10^6-triangle mesh that saves 40 MB of writing.
-  flat_ = FlatPrimitives<Set>(std::move(primitives), bvh_.order);
-  if (options.wide) {
-    wide_ = collapse_to_wide(bvh_);
-    // The wide tree holds its own boxes and leaves: the binary nodes (a third of the memory on the
-    // bunny) and the leaf order are not read again.
-    bvh_ = Bvh{};
+  if (!options.wide) {
+    // The slots are copied out in leaf order straight away (slot = leaf slot), not copied and then
+    // reordered: on a 10^6-triangle mesh that saves 40 MB of writing.
+    flat_ = FlatPrimitives<Set>(std::move(primitives), bvh_.order);
+    return;
   }
+  wide_ = collapse_to_wide(bvh_);
+  store_wide_leaves(std::move(primitives), options);
+  // The wide tree holds its own boxes and leaves: the binary nodes (a third of the memory on the
+  // bunny) and the leaf order are not read again.
+  bvh_ = Bvh{};
+}
+
+template <class Set>
+void BvhAggregate<Set>::store_wide_leaves(std::shared_ptr<const Set> primitives, const BvhBuildOptions& options) {
+  // A leaf becomes a pack when it holds one to four triangles and the scene's triangle test is the
+  // watertight one, whose answers the pack's test gives bit for bit; any other leaf keeps its
+  // primitives in slots, copied out in leaf order.
+  const std::array<std::uint32_t, Set::kKinds + 1> first = first_of_each_kind(*primitives);
+  bool may_pack = false;
+  constexpr size_t kTriangles = [] {
+    if constexpr (Set::template contains<TriangleKind>()) return Set::template index_of<TriangleKind>();
+    else return Set::kKinds;
+  }();
+  if constexpr (kTriangles < Set::kKinds)
+    may_pack = options.triangle_packs &&
+               primitives->template store<kTriangles>().method != TriangleMethod::moller_trumbore;
+  std::vector<std::uint32_t> loose;  // the set numbers of the slots' primitives, in leaf order
+  if (may_pack) {
+    packs_.reserve(stats_.leaves);
+    pack_triangles_.reserve(stats_.leaves);
+  }
+  for (WideBvhNode& node : wide_->nodes)
+    for (int i = 0; i < WideBvhNode::kWidth; ++i) {
+      if (node.count[i] == 0) continue;
+      const std::span<const std::uint32_t> leaf(bvh_.order.data() + node.child[i], node.count[i]);
+      if constexpr (kTriangles < Set::kKinds) {
+        const auto is_triangle = [&](std::uint32_t n) { return n >= first[kTriangles] && n < first[kTriangles + 1]; };
+        if (may_pack && leaf.size() <= size_t(TrianglePack::kLanes) && std::ranges::all_of(leaf, is_triangle)) {
+          const TriangleKind::Store& store = primitives->template store<kTriangles>();
+          std::array<TriangleCorners, TrianglePack::kLanes> corners;
+          PackTriangles triangles;
+          for (size_t lane = 0; lane < triangles.size(); ++lane) {
+            triangles[lane] = leaf[lane < leaf.size() ? lane : 0] - first[kTriangles];
+            corners[lane] = TriangleKind::hot(store, triangles[lane]);
+          }
+          node.child[i] = std::uint32_t(packs_.size());
+          node.count[i] |= kPackedLeaf;
+          packs_.emplace_back(std::span<const TriangleCorners>(corners.data(), leaf.size()));
+          pack_triangles_.push_back(triangles);
+          continue;
+        }
+      }
+      node.child[i] = std::uint32_t(loose.size());
+      loose.insert(loose.end(), leaf.begin(), leaf.end());
+    }
+  flat_ = FlatPrimitives<Set>(std::move(primitives), loose);
 }
 
 template <class Set>
@@ -192,11 +276,41 @@ std::optional<PrimitiveHit> BvhAggregate<Set>::closest_hit(const Ray& ray, Inter
     b2 = hit->b2;
     return hit->t;
   };
-  const auto found = wide_ ? wide_bvh_closest_hit(*wide_, ray, range, hit_primitive)
-                           : bvh_closest_hit(bvh_, ray, range, hit_primitive);
-  if (!found) return std::nullopt;
-  PrimitiveHit nearest{found->first, b1, b2};
-  flat_.name(nearest, found->second);
+  if (!wide_) {
+    const auto found = bvh_closest_hit(bvh_, ray, range, hit_primitive);
+    if (!found) return std::nullopt;
+    PrimitiveHit nearest{found->first, b1, b2};
+    flat_.name(nearest, found->second);
+    return nearest;
+  }
+  // In the 4-wide tree: the nearest hit's slot, or its pack and lane (4 pack + lane) when packed.
+  std::uint32_t where = 0;
+  bool in_pack = false;
+  auto hit_slots = slot_by_slot(hit_primitive, where);
+  auto hit_leaf = [&](std::uint32_t child, std::uint32_t count, Interval r)
+                      __attribute__((always_inline)) -> std::optional<float> {
+    if (count & kPackedLeaf) {
+      const std::optional<PackHit> hit = intersect_triangle_pack(prepared.watertight, prepared.lanes, packs_[child], r);
+      if (!hit) return std::nullopt;
+      b1 = hit->b1;
+      b2 = hit->b2;
+      where = child * TrianglePack::kLanes + std::uint32_t(hit->lane);
+      in_pack = true;
+      return hit->t;
+    }
+    const std::optional<float> t = hit_slots(child, count, r);
+    if (t) in_pack = false;
+    return t;
+  };
+  const std::optional<float> t = wide_bvh_closest_hit(*wide_, ray, range, hit_leaf);
+  if (!t) return std::nullopt;
+  PrimitiveHit nearest{*t, b1, b2};
+  if (in_pack) {
+    nearest.kind = std::uint8_t(Set::template index_of<TriangleKind>());
+    nearest.index = pack_triangles_[where / TrianglePack::kLanes][where % TrianglePack::kLanes];
+  } else {
+    flat_.name(nearest, where);
+  }
   return nearest;
 }
 
@@ -204,7 +318,15 @@ template <class Set>
 bool BvhAggregate<Set>::occluded(const Ray& ray, Interval range) const {
   const TriangleRay prepared(ray);
   auto hits_primitive = [&](std::uint32_t slot, Interval r) { return flat_.occludes(slot, prepared, r); };
-  return wide_ ? wide_bvh_any_hit(*wide_, ray, range, hits_primitive) : bvh_any_hit(bvh_, ray, range, hits_primitive);
+  if (!wide_) return bvh_any_hit(bvh_, ray, range, hits_primitive);
+  auto hits_leaf = [&](std::uint32_t child, std::uint32_t count, Interval r) __attribute__((always_inline)) {
+    if (count & kPackedLeaf)
+      return intersect_triangle_pack(prepared.watertight, prepared.lanes, packs_[child], r).has_value();
+    for (std::uint32_t slot = child; slot < child + count; ++slot)
+      if (hits_primitive(slot, r)) return true;
+    return false;
+  };
+  return wide_bvh_any_hit(*wide_, ray, range, hits_leaf);
 }
 
 }  // namespace rt

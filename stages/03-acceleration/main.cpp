@@ -93,7 +93,9 @@ int main(int argc, char** argv) {
           std::printf(" (leaf size %d%s), built in %.3f s\n", leaf_size, wide ? ", 4-wide" : "", build_seconds);
           std::printf("stage3: %zu nodes, %zu leaves, depth %zu, primitives per leaf %.2f mean / %zu max, SAH cost %.1f\n",
                       s.nodes, s.leaves, s.depth, s.mean_leaf_primitives, s.max_leaf_primitives, s.sah_cost);
-          if (bvh->wide_bvh()) std::printf("stage3: collapsed into %zu 4-wide nodes\n", bvh->wide_bvh()->nodes.size());
+          if (bvh->wide_bvh())
+            std::printf("stage3: collapsed into %zu 4-wide nodes, %zu leaves stored as triangle packs\n",
+                        bvh->wide_bvh()->nodes.size(), bvh->packs());
           if (triangles > 0)
             std::printf("stage3: memory %.1f bytes per triangle (mesh %.1f + BVH %.1f)\n",
                         double(mesh_bytes + bvh->bytes()) / double(triangles), double(mesh_bytes) / double(triangles),

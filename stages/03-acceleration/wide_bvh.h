@@ -18,8 +18,11 @@ struct alignas(64) WideBvhNode {
   // box (low = +inf, high = -inf), which the slab test never hits. The side is an index so that
   // a ray picks its near and far planes by its direction's signs without a branch.
   float bounds[2][3][kWidth];
-  std::uint32_t child[kWidth];  // interior child: its node index; leaf child: its first slot in Bvh::order
-  std::uint32_t count[kWidth];  // leaf child: its number of primitives; interior or unused child: 0
+  // Interior child: its node index, and count 0. Leaf child: its first slot in Bvh::order and its
+  // number of primitives (an aggregate may store its leaves its own way and change both, keeping
+  // count nonzero). Unused child: 0 and 0.
+  std::uint32_t child[kWidth];
+  std::uint32_t count[kWidth];
 };
 static_assert(sizeof(WideBvhNode) == 128, "WideBvhNode must stay two cache lines");
 
@@ -63,15 +66,38 @@ WideBvh collapse_to_wide(const Bvh& bvh);
   return lane_mask(enter <= exit);
 }
 
-// The contracts of bvh_closest_hit and bvh_any_hit (bvh.h), over the wide tree. The closest-hit
-// loop is always inlined into its caller, so that the hit it finds stays in registers: returned
-// from a call, the optional pair goes through memory in three stores and comes back in two loads,
-// one of which the stores cannot forward (a stall per query; docs/stage5.md, the speed ladder).
+// The contracts of bvh_closest_hit and bvh_any_hit (bvh.h), over the wide tree, a leaf at a time:
+// the traversal hands each leaf it enters to the caller's test, as the node holds it (child and
+// count; an aggregate may store a leaf its own way, as BvhAggregate stores triangles in packs),
+//   hit_leaf(child, count, range) -> std::optional<float>: the nearest t strictly inside `range`
+//                                    among the leaf's primitives (the caller notes which);
+//   hits_leaf(child, count, range) -> bool: whether any of them is hit inside `range`.
+// The closest-hit loop is always inlined into its caller, so that the hit it finds stays in
+// registers: returned from a call, an optional hit goes through memory in pieces and comes back
+// in one load that the stores cannot forward (a stall per query; docs/stage5.md, the speed ladder).
+template <class HitLeaf>
+[[gnu::always_inline]] inline std::optional<float> wide_bvh_closest_hit(const WideBvh& bvh, const Ray& ray,
+                                                                        Interval range, HitLeaf&& hit_leaf);
+template <class HitsLeaf>
+bool wide_bvh_any_hit(const WideBvh& bvh, const Ray& ray, Interval range, HitsLeaf&& hits_leaf);
+
+// A leaf test made of a test per primitive slot, for leaves as collapse_to_wide leaves them (slots
+// child ... child + count - 1): hit_primitive(slot, range) -> std::optional<float>, and the slot
+// of the nearest hit is written to `nearest_slot`.
 template <class HitPrimitive>
-[[gnu::always_inline]] inline std::optional<std::pair<float, std::uint32_t>> wide_bvh_closest_hit(
-    const WideBvh& bvh, const Ray& ray, Interval range, HitPrimitive&& hit_primitive);
-template <class HitsPrimitive>
-bool wide_bvh_any_hit(const WideBvh& bvh, const Ray& ray, Interval range, HitsPrimitive&& hits_primitive);
+[[gnu::always_inline]] inline auto slot_by_slot(HitPrimitive&& hit_primitive, std::uint32_t& nearest_slot) {
+  return [&hit_primitive, &nearest_slot](std::uint32_t child, std::uint32_t count, Interval range)
+             __attribute__((always_inline)) {
+    std::optional<float> nearest;
+    for (std::uint32_t slot = child; slot < child + count; ++slot)
+      if (const std::optional<float> t = hit_primitive(slot, range)) {
+        nearest = t;
+        nearest_slot = slot;
+        range.max = *t;
+      }
+    return nearest;
+  };
+}
 
 // A stack entry: a child of some node (interior when count == 0) and where the ray enters its box.
 struct WideBvhEntry {
@@ -79,10 +105,9 @@ struct WideBvhEntry {
   float t;
 };
 
-template <class HitPrimitive>
-std::optional<std::pair<float, std::uint32_t>> wide_bvh_closest_hit(const WideBvh& bvh, const Ray& ray,
-                                                                     Interval range, HitPrimitive&& hit_primitive) {
-  std::optional<std::pair<float, std::uint32_t>> closest;
+template <class HitLeaf>
+std::optional<float> wide_bvh_closest_hit(const WideBvh& bvh, const Ray& ray, Interval range, HitLeaf&& hit_leaf) {
+  std::optional<float> closest;
   // No test of the whole tree's box first: the root's four boxes are tested next anyway, and in a
   // closed scene (a room) every ray is inside it.
   if (bvh.nodes.empty()) return closest;
@@ -110,12 +135,9 @@ std::optional<std::pair<float, std::uint32_t>> wide_bvh_closest_hit(const WideBv
         current = entered[0];
         continue;
       }
-    } else {
-      for (std::uint32_t slot = current.child; slot < current.child + current.count; ++slot)
-        if (const std::optional<float> t = hit_primitive(slot, range)) {
-          closest = {*t, slot};
-          range.max = *t;
-        }
+    } else if (const std::optional<float> t = hit_leaf(current.child, current.count, range)) {
+      closest = t;
+      range.max = *t;
     }
     while (stack_size > 0 && stack[stack_size - 1].t > range.max) --stack_size;
     if (stack_size == 0) break;
@@ -124,8 +146,8 @@ std::optional<std::pair<float, std::uint32_t>> wide_bvh_closest_hit(const WideBv
   return closest;
 }
 
-template <class HitsPrimitive>
-bool wide_bvh_any_hit(const WideBvh& bvh, const Ray& ray, Interval range, HitsPrimitive&& hits_primitive) {
+template <class HitsLeaf>
+bool wide_bvh_any_hit(const WideBvh& bvh, const Ray& ray, Interval range, HitsLeaf&& hits_leaf) {
   if (bvh.nodes.empty()) return false;
   const RayInverse inverse(ray);
   WideBvhEntry stack[WideBvh::kStackSize];
@@ -139,9 +161,8 @@ bool wide_bvh_any_hit(const WideBvh& bvh, const Ray& ray, Interval range, HitsPr
         const int i = __builtin_ctz(hits);
         stack[stack_size++] = WideBvhEntry{node.child[i], node.count[i], t[i]};
       }
-    } else {
-      for (std::uint32_t slot = current.child; slot < current.child + current.count; ++slot)
-        if (hits_primitive(slot, range)) return true;
+    } else if (hits_leaf(current.child, current.count, range)) {
+      return true;
     }
     if (stack_size == 0) return false;
     current = stack[--stack_size];

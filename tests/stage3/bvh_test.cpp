@@ -244,6 +244,57 @@ TEST(WideBvh, FourBoxTestMatchesTheSlabTestBoxByBox) {
   }
 }
 
+// The leaves of the 4-wide tree, as the aggregate stores them: (packed, unpacked) counts.
+std::pair<size_t, size_t> packed_and_unpacked_leaves(const BvhAggregate<Primitives>& bvh) {
+  size_t packed = 0, unpacked = 0;
+  for (const WideBvhNode& node : bvh.wide_bvh()->nodes)
+    for (int i = 0; i < WideBvhNode::kWidth; ++i) {
+      if (node.count[i] == 0) continue;
+      const bool pack = (node.count[i] & BvhAggregate<Primitives>::kPackedLeaf) != 0;
+      packed += pack;
+      unpacked += !pack;
+      if (pack) {
+        EXPECT_LT(node.child[i], bvh.packs());
+      }
+    }
+  return {packed, unpacked};
+}
+
+// Every leaf of one to four triangles becomes a pack, and only those: a leaf with a sphere keeps
+// its slots, and so does every leaf when the scene's triangle test is Moeller-Trumbore (whose
+// answers the pack's watertight test would not give) or packs are turned off.
+TEST(WideBvh, LeavesOfUpToFourTrianglesArePacks) {
+  BvhBuildOptions options{.wide = true};
+  const BvhAggregate bunny_tree(bunny(), options);
+  const auto [packed, unpacked] = packed_and_unpacked_leaves(bunny_tree);
+  EXPECT_EQ(unpacked, 0u);
+  EXPECT_EQ(packed, bunny_tree.packs());
+  EXPECT_GT(packed, bunny()->size() / 4);
+
+  const auto set = mix();
+  const BvhAggregate mixed(set, options);
+  const auto [mixed_packed, mixed_unpacked] = packed_and_unpacked_leaves(mixed);
+  EXPECT_GT(mixed_packed, 0u);
+  EXPECT_GE(mixed_unpacked, 1u);  // the four spheres sit in leaves of their own or with triangles
+  EXPECT_LE(mixed_unpacked, 4u);
+
+  auto moller_trumbore = mix();
+  moller_trumbore->store_of<TriangleKind>().method = TriangleMethod::moller_trumbore;
+  EXPECT_EQ(BvhAggregate(moller_trumbore, options).packs(), 0u);
+  options.triangle_packs = false;
+  EXPECT_EQ(BvhAggregate(bunny(), options).packs(), 0u);
+}
+
+// The SAH prices a leaf of up to four primitives as one pack test only where leaves become packs.
+TEST(BvhLayout, LeafCostIsOnePackTestForUpToFourPrimitives) {
+  const BvhBuildOptions packed{.wide = true}, slots{.wide = true, .triangle_packs = false}, binary{};
+  EXPECT_EQ(leaf_cost(1, packed), BvhBuildOptions::kPackCost);
+  EXPECT_EQ(leaf_cost(4, packed), BvhBuildOptions::kPackCost);
+  EXPECT_EQ(leaf_cost(5, packed), 5.0f * BvhBuildOptions::kIntersectionCost);
+  EXPECT_EQ(leaf_cost(4, slots), 4.0f * BvhBuildOptions::kIntersectionCost);
+  EXPECT_EQ(leaf_cost(3, binary), 3.0f * BvhBuildOptions::kIntersectionCost);
+}
+
 TEST(BvhLayout, SahBeatsTheOtherBuildersOnItsOwnCostModel) {
   // The SAH tree minimises the expected cost per ray greedily; on the bunny it must come out
   // cheaper than the median and middle trees by the same measure.

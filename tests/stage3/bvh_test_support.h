@@ -23,12 +23,14 @@ struct Builder {
   SplitMethod split;
   int leaf_size;
   bool wide = false;  // traversed as the 4-wide tree collapsed from it
+  bool packs = true;  // the 4-wide tree's leaves of triangles stored as packs
 
   BvhBuildOptions options() const {
     BvhBuildOptions o;
     o.split = split;
     o.max_leaf_size = leaf_size;
     o.wide = wide;
+    o.triangle_packs = packs;
     return o;
   }
 };
@@ -36,7 +38,8 @@ inline void PrintTo(const Builder& b, std::ostream* out) { *out << b.name; }
 inline const Builder kBuilders[] = {{"median", SplitMethod::median, 4}, {"middle", SplitMethod::middle, 4},
                              {"sah", SplitMethod::sah, 4},       {"median_leaf1", SplitMethod::median, 1},
                              {"sah_leaf16", SplitMethod::sah, 16},    {"sah_wide", SplitMethod::sah, 4, true},
-                             {"median_leaf1_wide", SplitMethod::median, 1, true}};
+                             {"median_leaf1_wide", SplitMethod::median, 1, true},
+                             {"sah_wide_slots", SplitMethod::sah, 4, true, false}};
 
 // The stage-3 tests search stage 2's kinds: spheres and triangles.
 using Primitives = WhittedPrimitives;
@@ -133,9 +136,13 @@ inline ::testing::AssertionResult tree_culls(const BvhAggregate<Primitives>& bvh
     ++tested;
     return std::optional<float>();
   };
+  auto count_leaf = [&](std::uint32_t, std::uint32_t primitives, Interval) {
+    tested += primitives & ~BvhAggregate<Primitives>::kPackedLeaf;
+    return std::optional<float>();
+  };
   const std::vector<Ray> rays = random_rays(set, 64, 11);
   for (const Ray& ray : rays) {
-    if (bvh.wide_bvh()) wide_bvh_closest_hit(*bvh.wide_bvh(), ray, Interval::positive(), count);
+    if (bvh.wide_bvh()) wide_bvh_closest_hit(*bvh.wide_bvh(), ray, Interval::positive(), count_leaf);
     else bvh_closest_hit(bvh.bvh(), ray, Interval::positive(), count);
   }
   const double share = double(tested) / double(rays.size() * primitives);

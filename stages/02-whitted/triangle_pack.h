@@ -1,0 +1,121 @@
+// Stage 2, beyond the lecture: four triangles tested at once, one per SIMD lane. Where
+// triangle_lanes.h puts one triangle's three corners in the lanes, here each lane is a whole
+// triangle, and every line of the watertight test is one instruction for four triangles: stage 3's
+// BVH stores the triangles of a leaf this way (a "pack"), so that a leaf costs one test instead of
+// one per triangle. Packing primitives for SIMD: Wald, Benthin & Boulos, "Getting Rid of Packets",
+// IRT 2008 (Embree's Triangle4 works the same way).
+//
+// Lane by lane the arithmetic is the scalar watertight test's (triangle_intersection.h), in its
+// order, so each lane answers what the scalar test answers for its triangle, bit for bit
+// (tests/stage2/triangle_pack_test.cpp).
+#pragma once
+
+#include "02-whitted/triangle_lanes.h"
+
+#include <span>
+
+namespace rt {
+
+// Up to four triangles stored corner by corner, then axis by axis: corner[c][axis][lane], so that
+// a row of four lanes is one load and the ray's permuted axes kx, ky, kz pick rows. 144 bytes. A
+// pack of fewer than four repeats its first triangle in the unused lanes: their hits can only tie
+// with lane 0's, and a tie goes to the lowest lane.
+struct alignas(16) TrianglePack {
+  static constexpr int kLanes = 4;
+  float corner[3][3][kLanes];
+
+  TrianglePack() = default;
+  // One to four triangles (a leaf's).
+  explicit TrianglePack(std::span<const TriangleCorners> triangles) {
+    for (int lane = 0; lane < kLanes; ++lane) {
+      const TriangleCorners& triangle = triangles[lane < int(triangles.size()) ? size_t(lane) : 0];
+      for (int c = 0; c < 3; ++c)
+        for (int axis = 0; axis < 3; ++axis) corner[c][axis][lane] = triangle.coordinate[axis][c];
+    }
+  }
+  Vec3 vertex(int lane, int c) const { return Vec3(corner[c][0][lane], corner[c][1][lane], corner[c][2][lane]); }
+};
+static_assert(sizeof(TrianglePack) == 144, "a pack is 36 floats");
+
+// The nearest hit in a pack, and which lane holds its triangle.
+struct PackHit {
+  float t, b1, b2;
+  int lane;
+};
+
+// Task stage2.triangle.pack. The nearest hit with t strictly inside `range` among the pack's four
+// triangles, each tested as intersect_triangle_watertight tests it for the same prepared ray (`ray`,
+// and `lanes` made from it), bit for bit; on equal t the lowest lane, as testing the lanes one after
+// another with a shrinking range would answer. Lane i of each register holds triangle i.
+//   1. Rows kz, kx, ky of each corner (load4), minus the origin's coordinate, and the shear:
+//      x' = x - shear_x z, y' = y - shear_y z.
+//   2. The edge functions U, V, W of all four triangles, each one line; a lane where any is exactly
+//      0 recomputes its three in double, as the scalar test does.
+//   3. The lanes' verdicts as masks (a comparison of Float4s is one): inside (no mixed signs),
+//      det = (U + V) + W not 0, t inside the range and above its error bound
+//      (watertight_t_error_bound, on Float4s); then the nearest lane of the mask.
+std::optional<PackHit> intersect_triangle_pack(const WatertightRay& ray, const LanesRay& lanes,
+                                               const TrianglePack& pack, Interval range);
+
+// Defined here, not in a .cpp, for the reason the scalar test is: the BVH's leaf loop compiles it in.
+[[gnu::always_inline]] inline std::optional<PackHit> intersect_triangle_pack(const WatertightRay& ray,
+                                                                             const LanesRay& lanes,
+                                                                             const TrianglePack& pack,
+                                                                             Interval range) {
+  // BEGIN TASK stage2.triangle.pack
+  const Float4 a_z = load4(pack.corner[0][ray.kz]) - lanes.origin_z;
+  const Float4 b_z = load4(pack.corner[1][ray.kz]) - lanes.origin_z;
+  const Float4 c_z = load4(pack.corner[2][ray.kz]) - lanes.origin_z;
+  const Float4 ax = load4(pack.corner[0][ray.kx]) - lanes.origin_x - lanes.shear_x * a_z;
+  const Float4 ay = load4(pack.corner[0][ray.ky]) - lanes.origin_y - lanes.shear_y * a_z;
+  const Float4 bx = load4(pack.corner[1][ray.kx]) - lanes.origin_x - lanes.shear_x * b_z;
+  const Float4 by = load4(pack.corner[1][ray.ky]) - lanes.origin_y - lanes.shear_y * b_z;
+  const Float4 cx = load4(pack.corner[2][ray.kx]) - lanes.origin_x - lanes.shear_x * c_z;
+  const Float4 cy = load4(pack.corner[2][ray.ky]) - lanes.origin_y - lanes.shear_y * c_z;
+
+  Float4 u = cx * by - cy * bx;
+  Float4 v = ax * cy - ay * cx;
+  Float4 w = bx * ay - by * ax;
+  for (unsigned zero = lane_mask((u == 0.0f) | (v == 0.0f) | (w == 0.0f)); zero != 0; zero &= zero - 1) {
+    const int i = __builtin_ctz(zero);
+    u[i] = float(double(cx[i]) * double(by[i]) - double(cy[i]) * double(bx[i]));
+    v[i] = float(double(ax[i]) * double(cy[i]) - double(ay[i]) * double(cx[i]));
+    w[i] = float(double(bx[i]) * double(ay[i]) - double(by[i]) * double(ax[i]));
+  }
+  const Int4 mixed_signs = ((u < 0.0f) | (v < 0.0f) | (w < 0.0f)) & ((u > 0.0f) | (v > 0.0f) | (w > 0.0f));
+  const Float4 det = u + v + w;
+  Int4 valid = ~mixed_signs & (det != 0.0f);
+  if (lane_mask(valid) == 0) return std::nullopt;  // the usual case in a leaf: four misses
+
+  const Float4 az = lanes.shear_z * a_z, bz = lanes.shear_z * b_z, cz = lanes.shear_z * c_z;
+  const Float4 inv_det = 1.0f / det;  // inf or NaN in the lanes already refused
+  const Float4 t = (u * az + v * bz + w * cz) * inv_det;
+  valid &= (range.min < t) & (t < range.max);
+  const Float4 max_z = max4(max4(abs4(az), abs4(bz)), abs4(cz));
+  const Float4 max_x = max4(max4(abs4(ax), abs4(bx)), abs4(cx));
+  const Float4 max_y = max4(max4(abs4(ay), abs4(by)), abs4(cy));
+  const Float4 max_edge = max4(max4(abs4(u), abs4(v)), abs4(w));
+  valid &= t > watertight_t_error_bound(max_x, max_y, max_z, max_edge, inv_det);
+  unsigned hits = lane_mask(valid);
+  if (hits == 0) return std::nullopt;
+  int nearest = __builtin_ctz(hits);
+  for (hits &= hits - 1; hits != 0; hits &= hits - 1) {
+    const int i = __builtin_ctz(hits);
+    if (t[i] < t[nearest]) nearest = i;
+  }
+  return PackHit{t[nearest], v[nearest] * inv_det[nearest], w[nearest] * inv_det[nearest], nearest};
+  // PLACEHOLDER
+  // report_unfinished_task("stage2.triangle.pack");
+  // (void)lanes;
+  // std::optional<PackHit> nearest;
+  // for (int lane = 0; lane < TrianglePack::kLanes; ++lane)
+  //   if (const std::optional<TriangleHit> hit = intersect_triangle_watertight(
+  //           ray, pack.vertex(lane, 0), pack.vertex(lane, 1), pack.vertex(lane, 2), range)) {
+  //     nearest = PackHit{hit->t, hit->b1, hit->b2, lane};
+  //     range.max = hit->t;
+  //   }
+  // return nearest;
+  // END TASK
+}
+
+}  // namespace rt
