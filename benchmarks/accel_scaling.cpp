@@ -79,17 +79,20 @@ int main(int argc, char** argv) {
       const double build_ms = seconds_since(start) * 1e3;
       measure(split_method_name(split), bvh, build_ms, bvh.stats().sah_cost);
     }
-    {
-      // The SAH tree collapsed into 4-wide nodes, its triangles tested with their corners in SIMD
-      // lanes (as stage3 --wide does); the binary trees above keep the lecture's scalar test.
+    // The SAH tree collapsed into 4-wide nodes (as stage3 --wide builds it): first with its leaves
+    // tested slot by slot, each triangle with its corners in SIMD lanes, then with its leaves stored
+    // as triangle packs, four triangles per test. The binary trees above keep the lecture's scalar
+    // test.
+    for (const bool packs : {false, true}) {
       BvhBuildOptions o;
       o.wide = true;
+      o.triangle_packs = packs;
       TriangleMethod& method = set->store_of<TriangleKind>().method;
       method = TriangleMethod::watertight_lanes;
       const auto start = Clock::now();
       const BvhAggregate bvh(set, o);
       const double build_ms = seconds_since(start) * 1e3;
-      measure("sah-wide", bvh, build_ms, bvh.stats().sah_cost);
+      measure(packs ? "sah-wide" : "sah-wide-slots", bvh, build_ms, bvh.stats().sah_cost);
       method = TriangleMethod::watertight;
     }
 #if RT_HAVE_EMBREE
@@ -118,9 +121,11 @@ int main(int argc, char** argv) {
 
   std::printf("\nratios, incoherent rays, one thread, this run:\n");
   for (const char* m : {"sphere 1e5", "sphere 1e6", "bunny"})
-    std::printf("  %-11s SAH vs naive %8.0fx   SAH vs median %.2fx   SAH vs middle %.2fx   4-wide vs SAH %.2fx\n", m,
-                incoherent[{"naive", m}] / incoherent[{"sah", m}], incoherent[{"median", m}] / incoherent[{"sah", m}],
-                incoherent[{"middle", m}] / incoherent[{"sah", m}], incoherent[{"sah", m}] / incoherent[{"sah-wide", m}]);
+    std::printf("  %-11s SAH vs naive %8.0fx   SAH vs median %.2fx   SAH vs middle %.2fx   4-wide vs SAH %.2fx"
+                "   packs vs slots %.2fx\n",
+                m, incoherent[{"naive", m}] / incoherent[{"sah", m}], incoherent[{"median", m}] / incoherent[{"sah", m}],
+                incoherent[{"middle", m}] / incoherent[{"sah", m}], incoherent[{"sah", m}] / incoherent[{"sah-wide", m}],
+                incoherent[{"sah-wide-slots", m}] / incoherent[{"sah-wide", m}]);
 #if RT_HAVE_EMBREE
   for (const char* m : {"sphere 1e5", "sphere 1e6", "bunny"})
     std::printf("  %-11s SAH reaches %.0f%% of Embree's rays per second, 4-wide SAH %.0f%%; Embree vs naive %.0fx\n", m,

@@ -79,7 +79,8 @@ def offset_vs_scale(charts):
 
 
 ACCEL_STYLE = {"naive": ("o-", "#7f8c8d"), "median": ("s-", "#c0392b"), "middle": ("^-", "#d68910"),
-               "sah": ("D-", "#2471a3"), "sah-wide": ("P-", "#6c3483"), "embree": ("x--", "#17a589")}
+               "sah": ("D-", "#2471a3"), "sah-wide-slots": ("P:", "#a569bd"), "sah-wide": ("P-", "#6c3483"),
+               "embree": ("x--", "#17a589")}
 
 
 def accel_time_per_ray(charts):

@@ -3,14 +3,31 @@
 #include "common/error.h"
 #include "common/task.h"
 
+#include <sys/mman.h>
+
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cstdlib>
 #include <future>
+#include <new>
 #include <system_error>
 #include <thread>
 
 namespace rt {
+
+void* allocate_huge(size_t bytes) {
+  constexpr size_t kPage = CacheLineAllocator<char>::kHugePage;
+  const size_t rounded = (bytes + kPage - 1) / kPage * kPage;  // aligned_alloc wants a multiple
+  void* p = std::aligned_alloc(kPage, rounded);
+  if (!p) throw std::bad_alloc();
+#ifdef MADV_HUGEPAGE
+  // A hint: where transparent huge pages are "madvise" only (Debian's default), this is what asks
+  // for them. Refused or not, the memory is the same.
+  madvise(p, rounded, MADV_HUGEPAGE);
+#endif
+  return p;
+}
 
 float leaf_cost(int count, const BvhBuildOptions& options) {
   if (options.wide && options.triangle_packs && count <= BvhBuildOptions::kPackSize) return BvhBuildOptions::kPackCost;
