@@ -1,8 +1,8 @@
 // The watertight test with a triangle's corners in SIMD lanes (02-whitted/triangle_lanes.h) against
 // the scalar watertight test it must equal bit for bit, and the crack test of its own.
 #include "02-whitted/triangle_ray.h"
-#include "common/random.h"
 #include "experiments/triangle_leaks.h"
+#include "stage2/aimed_rays.h"
 
 #include <gtest/gtest.h>
 
@@ -35,13 +35,8 @@ struct Agreement {
   }
 };
 
-Vec3 random_point(Rng& rng) { return Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f; }
-
 // Random triangles from 10^-3 to 10^3 in size, up to 10^3 away from the origin, and rays aimed at
-// points of their plane in and around them (barycentrics in [-0.25, 1.25]), from every side. A
-// sixth of the directions get one or two components exactly 0, so every permutation of the axes
-// and the flip of kx and ky for a negative d_kz are taken; some ranges end before the hit, and
-// some rays start on the triangle.
+// them (aimed_rays.h: zero direction components, short ranges, rays that start on the triangle).
 TEST(TriangleLanes, AnswersAsTheWatertightTestBitForBit) {
   Rng rng(7, 0, 0);
   Agreement agreement;
@@ -50,18 +45,8 @@ TEST(TriangleLanes, AnswersAsTheWatertightTestBitForBit) {
     const Vec3 centre = random_point(rng) * std::pow(10.0f, 3.0f * rng.uniform());
     const Vec3 v0 = centre + size * random_point(rng), v1 = centre + size * random_point(rng),
                v2 = centre + size * random_point(rng);
-    const float b1 = 1.5f * rng.uniform() - 0.25f, b2 = 1.5f * rng.uniform() - 0.25f;
-    const Vec3 target = (1.0f - b1 - b2) * v0 + b1 * v1 + b2 * v2;
-    Vec3 direction = random_point(rng);
-    if (i % 6 == 0) direction[i / 6 % 3] = 0.0f;
-    if (i % 12 == 0) direction[(i / 6 + 1) % 3] = -0.0f;
-    if (glm::dot(direction, direction) == 0.0f) continue;
-    direction = glm::normalize(direction);
-    // Every fourth ray starts on the triangle, give or take a few roundings (a secondary ray):
-    // there t is rounding noise and the error bound on t decides.
-    const float distance = i % 4 == 0 ? size * 1e-6f * rng.uniform() : size * std::pow(10.0f, 2.0f * rng.uniform());
-    const Interval range = i % 5 == 0 ? Interval{0.0f, distance * rng.uniform()} : Interval::positive();
-    agreement.check(Ray{target - distance * direction, direction}, v0, v1, v2, range);
+    if (const std::optional<AimedRay> aimed = aimed_ray(rng, i, v0, v1, v2, size))
+      agreement.check(aimed->ray, v0, v1, v2, aimed->range);
   }
   EXPECT_EQ(agreement.disagreements, 0) << "of " << agreement.cases;
   EXPECT_GT(agreement.hits, agreement.cases / 10);  // both hits and misses were compared

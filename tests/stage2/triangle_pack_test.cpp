@@ -2,8 +2,8 @@
 // watertight test, lane by lane: the pack's answer must be the nearest of the four scalar answers,
 // bit for bit, with a tie going to the lowest lane.
 #include "02-whitted/triangle_ray.h"
-#include "common/random.h"
 #include "experiments/triangle_leaks.h"
+#include "stage2/aimed_rays.h"
 
 #include <gtest/gtest.h>
 
@@ -57,12 +57,9 @@ struct Agreement {
   }
 };
 
-Vec3 random_point(Rng& rng) { return Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f; }
-
 // Packs of one to four random triangles near each other (sizes 10^-3 to 10^3, up to 10^3 from the
-// origin), and rays aimed at a point of one of them, in and around it, from every side: a sixth of
-// the directions with components exactly 0, some ranges ending before the hit, some rays starting
-// on the triangle, where the bound on t decides.
+// origin), and rays aimed at one of them (aimed_rays.h: zero direction components, short ranges,
+// rays that start on the triangle).
 TEST(TrianglePack, AnswersAsTheWatertightTestLaneByLane) {
   Rng rng(11, 0, 0);
   Agreement agreement;
@@ -73,17 +70,9 @@ TEST(TrianglePack, AnswersAsTheWatertightTestLaneByLane) {
     Triangle triangles[4];
     for (int k = 0; k < count; ++k)
       for (Vec3& v : triangles[k]) v = centre + size * random_point(rng);
-    const Triangle& aimed = triangles[int(rng.uniform() * float(count)) % count];
-    const float b1 = 1.5f * rng.uniform() - 0.25f, b2 = 1.5f * rng.uniform() - 0.25f;
-    const Vec3 target = (1.0f - b1 - b2) * aimed[0] + b1 * aimed[1] + b2 * aimed[2];
-    Vec3 direction = random_point(rng);
-    if (i % 6 == 0) direction[i / 6 % 3] = 0.0f;
-    if (i % 12 == 0) direction[(i / 6 + 1) % 3] = -0.0f;
-    if (glm::dot(direction, direction) == 0.0f) continue;
-    direction = glm::normalize(direction);
-    const float distance = i % 4 == 0 ? size * 1e-6f * rng.uniform() : size * std::pow(10.0f, 2.0f * rng.uniform());
-    const Interval range = i % 5 == 0 ? Interval{0.0f, distance * rng.uniform()} : Interval::positive();
-    agreement.check(Ray{target - distance * direction, direction}, triangles, count, range);
+    const Triangle& t = triangles[int(rng.uniform() * float(count)) % count];
+    if (const std::optional<AimedRay> aimed = aimed_ray(rng, i, t[0], t[1], t[2], size))
+      agreement.check(aimed->ray, triangles, count, aimed->range);
   }
   EXPECT_EQ(agreement.disagreements, 0) << "of " << agreement.cases;
   EXPECT_GT(agreement.hits, agreement.cases / 10);  // both hits and misses were compared
