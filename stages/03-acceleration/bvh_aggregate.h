@@ -101,6 +101,11 @@ class BvhAggregate : public Aggregate {
 
  private:
   static_assert(BvhBuildOptions::kPackSize == TrianglePack::kLanes, "the builder prices the packs this aggregate makes");
+  // TriangleKind's place in the set; kKinds when the set has no triangles (and so no packs).
+  static constexpr size_t kTriangles = [] {
+    if constexpr (Set::template contains<TriangleKind>()) return Set::template index_of<TriangleKind>();
+    else return Set::kKinds;
+  }();
   // Which triangle each lane of a pack holds: its index in the triangle kind's store.
   using PackTriangles = std::array<std::uint32_t, TrianglePack::kLanes>;
   // Stores the 4-wide tree's leaves: as triangle packs where they can be, the rest in flat_.
@@ -222,10 +227,6 @@ void BvhAggregate<Set>::store_wide_leaves(std::shared_ptr<const Set> primitives,
   // primitives in slots, copied out in leaf order.
   const std::array<std::uint32_t, Set::kKinds + 1> first = first_of_each_kind(*primitives);
   bool may_pack = false;
-  constexpr size_t kTriangles = [] {
-    if constexpr (Set::template contains<TriangleKind>()) return Set::template index_of<TriangleKind>();
-    else return Set::kKinds;
-  }();
   if constexpr (kTriangles < Set::kKinds)
     may_pack = options.triangle_packs &&
                primitives->template store<kTriangles>().method != TriangleMethod::moller_trumbore;
@@ -306,7 +307,7 @@ std::optional<PrimitiveHit> BvhAggregate<Set>::closest_hit(const Ray& ray, Inter
   if (!t) return std::nullopt;
   PrimitiveHit nearest{*t, b1, b2};
   if (in_pack) {
-    nearest.kind = std::uint8_t(Set::template index_of<TriangleKind>());
+    nearest.kind = std::uint8_t(kTriangles);
     nearest.index = pack_triangles_[where / TrianglePack::kLanes][where % TrianglePack::kLanes];
   } else {
     flat_.name(nearest, where);
