@@ -263,7 +263,7 @@ std::pair<size_t, size_t> packed_and_unpacked_leaves(const BvhAggregate<Primitiv
 // Every leaf of one to four triangles becomes a pack, and only those: a leaf with a sphere keeps
 // its slots, and so does every leaf when the scene's triangle test is Moeller-Trumbore (whose
 // answers the pack's watertight test would not give) or packs are turned off.
-TEST(WideBvh, LeavesOfUpToFourTrianglesArePacks) {
+TEST(BvhLayout, WideLeavesOfUpToFourTrianglesArePacks) {
   BvhBuildOptions options{.wide = true};
   const BvhAggregate bunny_tree(bunny(), options);
   const auto [packed, unpacked] = packed_and_unpacked_leaves(bunny_tree);
