@@ -83,7 +83,7 @@ bool wide_bvh_any_hit(const WideBvh& bvh, const Ray& ray, Interval range, HitsLe
 
 // A leaf test made of a test per primitive slot, for leaves as collapse_to_wide leaves them (slots
 // child ... child + count - 1): hit_primitive(slot, range) -> std::optional<float>, and the slot
-// of the nearest hit is written to `nearest_slot`.
+// of the nearest hit is written to `nearest_slot`. The test refers to both; they must outlive it.
 template <class HitPrimitive>
 [[gnu::always_inline]] inline auto slot_by_slot(HitPrimitive&& hit_primitive, std::uint32_t& nearest_slot) {
   return [&hit_primitive, &nearest_slot](std::uint32_t child, std::uint32_t count, Interval range)
