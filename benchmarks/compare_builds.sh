@@ -10,7 +10,9 @@
 #    spell of the machine (this one has slow spells of minutes, 0.60 against 0.74 M paths/s for one
 #    build, and at times one core slower than the other);
 #  - two threads, the builds one after the other (path_error_vs_time --throughput, 256 x 256 at
-#    64 spp, best of three): each run's ratio is taken with the other build's run next to it.
+#    64 spp, best of three): each run's ratio is taken with the other build's run next to it;
+#  - the binary SAH tree's build on the 10^6-triangle mesh, on both cores, one after the other
+#    (stage3_bench Build/sah/6, the median of three builds): the ratio is base time / new time.
 # Printed: each side's median and the median of the rounds' ratios.
 #
 #   benchmarks/compare_builds.sh [--runs N] BASE_REV [NEW_REV]     (NEW_REV defaults to HEAD)
@@ -32,10 +34,10 @@ build() {  # REV -> prints the folder of its programs
   commit=$(git -C "$repo" rev-parse --verify "$1^{commit}")
   tree="$work/$commit"
   if [[ ! -x "$tree/build/release/bin/stage3" || ! -x "$tree/build/release/bin/stage5" ||
-        ! -x "$tree/build/release/bin/path_error_vs_time" ]]; then
+        ! -x "$tree/build/release/bin/path_error_vs_time" || ! -x "$tree/build/release/bin/stage3_bench" ]]; then
     [[ -d "$tree" ]] || git -C "$repo" worktree add --detach "$tree" "$commit" > /dev/null
     (cd "$tree" && cmake --preset release > /dev/null &&
-      cmake --build --preset release --target stage3 stage5 path_error_vs_time > /dev/null)
+      cmake --build --preset release --target stage3 stage5 path_error_vs_time stage3_bench > /dev/null)
   fi
   echo "$tree/build/release/bin"
 }
@@ -77,6 +79,9 @@ for ((i = 1; i <= runs; ++i)); do
     bin=${!side}
     "$bin/path_error_vs_time" --throughput | sed -n 's/^ *2 threads: \([0-9.]*\) M paths.*/\1/p' |
       while read -r rate; do echo "cornell, 2 threads ($side): $rate"; done
+    "$bin/stage3_bench" --benchmark_filter='^Build/sah/6(/real_time)?$' --benchmark_repetitions=3 \
+      --benchmark_report_aggregates_only=true --benchmark_format=csv 2> /dev/null |
+      awk -F, '/_median"/ { print "build, 2 threads ('"$side"'): " $3 }'
   done
 done | tee "$out/all.txt"
 
@@ -93,3 +98,7 @@ b=$(grep '^cornell, 2 threads (base)' "$out/all.txt" | sed 's/.*: //')
 n=$(grep '^cornell, 2 threads (new)' "$out/all.txt" | sed 's/.*: //')
 r=$(paste <(echo "$b") <(echo "$n") | awk '{printf "%.4f\n", $2 / $1}' | median)
 echo "  cornell, 2 threads (M paths/s, one after the other): $(echo "$b" | median) -> $(echo "$n" | median)   (${r}x)"
+b=$(grep '^build, 2 threads (base)' "$out/all.txt" | sed 's/.*: //')
+n=$(grep '^build, 2 threads (new)' "$out/all.txt" | sed 's/.*: //')
+r=$(paste <(echo "$b") <(echo "$n") | awk '{printf "%.4f\n", $1 / $2}' | median)
+echo "  10^6-triangle SAH build, 2 threads (ms, one after the other): $(echo "$b" | median) -> $(echo "$n" | median)   (${r}x faster)"

@@ -26,6 +26,7 @@ inline Float4 abs4(Float4 v) {
 }
 // Lane by lane the larger of a and b (for numbers, not NaNs: a NaN lane gives b).
 inline Float4 max4(Float4 a, Float4 b) { return a > b ? a : b; }
+inline Float4 min4(Float4 a, Float4 b) { return a < b ? a : b; }
 // The largest of lanes 0, 1 and 2 (a row of three).
 inline float max3(Float4 v) { return std::max(std::max(v[0], v[1]), v[2]); }
 

@@ -6,8 +6,10 @@
 
 #include <cstdint>
 #include <cstdlib>
+#include <functional>
 #include <new>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -79,6 +81,11 @@ struct BvhStats {
   double sah_cost = 0.0;  // the tree's SAH cost with the constants above, per ray through the root
 };
 
+// Calls body(begin, end) for `threads` contiguous chunks of [0, count) at the same time, each on a
+// thread of its own (0: one per core; the calling thread takes the last chunk). The chunks depend
+// on the thread count, so what body makes of an index must not.
+void for_each_chunk(size_t count, int threads, const std::function<void(size_t begin, size_t end)>& body);
+
 // Memory of `bytes` on 2 MiB boundaries, in huge pages where the system grants them; free() frees it.
 void* allocate_huge(size_t bytes);
 
@@ -111,7 +118,7 @@ struct CacheLineAllocator {
 struct Bvh {
   // nodes[0] is the root; nodes[1] is unused (padding); then sibling pairs (2k, 2k + 1).
   std::vector<BvhNode, CacheLineAllocator<BvhNode>> nodes;
-  std::vector<std::uint32_t> order; // primitive indices in leaf order
+  std::vector<std::uint32_t, CacheLineAllocator<std::uint32_t>> order;  // primitive indices in leaf order
 
   BvhStats stats() const;
   // Traversal needs a stack of one entry per level below the root.
@@ -120,7 +127,7 @@ struct Bvh {
 
 // Builds a BVH over primitives given by their bounding boxes. Any input terminates with a valid
 // tree: no primitives (one empty leaf), one primitive, all centroids equal, empty or flat boxes.
-Bvh build_bvh(const std::vector<Aabb>& primitive_bounds, const BvhBuildOptions& options);
+Bvh build_bvh(std::span<const Aabb> primitive_bounds, const BvhBuildOptions& options);
 
 // Task stage3.bvh.closest_hit. Iterative traversal with a fixed stack. At an interior node, test
 // both children's boxes against the current range; go on into the nearer one (smaller entry t)

@@ -28,7 +28,7 @@ class FlatPrimitives {
   // Slot s holds the primitive numbered numbers[s] in the set's own numbering.
   FlatPrimitives(std::shared_ptr<const Set> set, std::span<const std::uint32_t> numbers);
   // Every primitive's box in the set's own numbering: what a BVH is built from.
-  static std::vector<Aabb> bounds_in_set_order(const Set& set);
+  static std::vector<Aabb, CacheLineAllocator<Aabb>> bounds_in_set_order(const Set& set);
   size_t size() const { return hot_.size(); }
   // The hit of the primitive in `slot` with t strictly inside `range`.
   std::optional<PrimitiveHit> intersect(size_t slot, const TriangleRay& ray, Interval range) const {
@@ -57,8 +57,9 @@ class FlatPrimitives {
 
  private:
   std::shared_ptr<const Set> set_;
-  std::vector<typename Set::AnyHot> hot_;  // per slot
-  std::vector<std::uint32_t> index_;       // per slot: the primitive's index within its kind
+  // Per slot (in huge pages when large: CacheLineAllocator).
+  std::vector<typename Set::AnyHot, CacheLineAllocator<typename Set::AnyHot>> hot_;
+  std::vector<std::uint32_t, CacheLineAllocator<std::uint32_t>> index_;  // the primitive's index within its kind
 };
 
 template <class Set>
@@ -117,7 +118,7 @@ class BvhAggregate : public Aggregate {
   BvhStats stats_;
   std::optional<WideBvh> wide_;  // when built with BvhBuildOptions::wide
   std::vector<TrianglePack, CacheLineAllocator<TrianglePack>> packs_;
-  std::vector<PackTriangles> pack_triangles_;
+  std::vector<PackTriangles, CacheLineAllocator<PackTriangles>> pack_triangles_;
 };
 template <class Set>
 BvhAggregate(std::shared_ptr<Set>, const BvhBuildOptions&) -> BvhAggregate<std::remove_const_t<Set>>;
@@ -171,8 +172,8 @@ FlatPrimitives<Set>::FlatPrimitives(std::shared_ptr<const Set> set, std::span<co
 }
 
 template <class Set>
-std::vector<Aabb> FlatPrimitives<Set>::bounds_in_set_order(const Set& set) {
-  std::vector<Aabb> bounds;
+std::vector<Aabb, CacheLineAllocator<Aabb>> FlatPrimitives<Set>::bounds_in_set_order(const Set& set) {
+  std::vector<Aabb, CacheLineAllocator<Aabb>> bounds;
   bounds.reserve(set.size());
   Set::for_each_kind([&](auto k) {
     using Kind = typename Set::template Kind<k>;
@@ -231,10 +232,10 @@ void BvhAggregate<Set>::store_wide_leaves(std::shared_ptr<const Set> primitives,
     may_pack = options.triangle_packs &&
                primitives->template store<kTriangles>().method != TriangleMethod::moller_trumbore;
   std::vector<std::uint32_t> loose;  // the set numbers of the slots' primitives, in leaf order
-  if (may_pack) {
-    packs_.reserve(stats_.leaves);
-    pack_triangles_.reserve(stats_.leaves);
-  }
+  // First, in node order, which leaves become packs (numbered in that order): each pack's leaf, as
+  // its first entry in the leaf order and its count.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> packed_leaves;
+  if (may_pack) packed_leaves.reserve(stats_.leaves);
   for (WideBvhNode& node : wide_->nodes)
     for (int i = 0; i < WideBvhNode::kWidth; ++i) {
       if (node.count[i] == 0) continue;
@@ -242,23 +243,33 @@ void BvhAggregate<Set>::store_wide_leaves(std::shared_ptr<const Set> primitives,
       if constexpr (kTriangles < Set::kKinds) {
         const auto is_triangle = [&](std::uint32_t n) { return n >= first[kTriangles] && n < first[kTriangles + 1]; };
         if (may_pack && leaf.size() <= size_t(TrianglePack::kLanes) && std::ranges::all_of(leaf, is_triangle)) {
-          const TriangleKind::Store& store = primitives->template store<kTriangles>();
-          std::array<TriangleCorners, TrianglePack::kLanes> corners;
-          PackTriangles triangles;
-          for (size_t lane = 0; lane < triangles.size(); ++lane) {
-            triangles[lane] = leaf[lane < leaf.size() ? lane : 0] - first[kTriangles];
-            corners[lane] = TriangleKind::hot(store, triangles[lane]);
-          }
-          node.child[i] = std::uint32_t(packs_.size());
+          packed_leaves.emplace_back(node.child[i], node.count[i]);
+          node.child[i] = std::uint32_t(packed_leaves.size() - 1);
           node.count[i] |= kPackedLeaf;
-          packs_.emplace_back(std::span<const TriangleCorners>(corners.data(), leaf.size()));
-          pack_triangles_.push_back(triangles);
           continue;
         }
       }
       node.child[i] = std::uint32_t(loose.size());
       loose.insert(loose.end(), leaf.begin(), leaf.end());
     }
+  // Then the packs, their corners gathered from the mesh, on every build thread: a triangle's
+  // corners are far from the last one's in memory, and a thread spends most of its time waiting.
+  if constexpr (kTriangles < Set::kKinds) {
+    const TriangleKind::Store& store = primitives->template store<kTriangles>();
+    packs_.resize(packed_leaves.size());
+    pack_triangles_.resize(packed_leaves.size());
+    for_each_chunk(packed_leaves.size(), options.build_threads, [&](size_t begin, size_t end) {
+      for (size_t k = begin; k < end; ++k) {
+        const auto [at, count] = packed_leaves[k];
+        std::array<TriangleCorners, TrianglePack::kLanes> corners;
+        for (size_t lane = 0; lane < TrianglePack::kLanes; ++lane) {
+          pack_triangles_[k][lane] = bvh_.order[at + (lane < count ? lane : 0)] - first[kTriangles];
+          corners[lane] = TriangleKind::hot(store, pack_triangles_[k][lane]);
+        }
+        packs_[k] = TrianglePack(std::span<const TriangleCorners>(corners.data(), count));
+      }
+    });
+  }
   flat_ = FlatPrimitives<Set>(std::move(primitives), loose);
 }
 

@@ -113,7 +113,7 @@ TEST(FarGeometry, TheBvhBuildersSurviveBoxesThatOverflowOrHoldNaN) {
   boxes[12].hi = Vec3(nan);
   for (const SplitMethod split : {SplitMethod::median, SplitMethod::middle, SplitMethod::sah}) {
     const Bvh bvh = build_bvh(boxes, BvhBuildOptions{.split = split});
-    std::vector<std::uint32_t> order = bvh.order;
+    std::vector<std::uint32_t> order(bvh.order.begin(), bvh.order.end());
     std::sort(order.begin(), order.end());
     for (std::uint32_t i = 0; i < order.size(); ++i) ASSERT_EQ(order[i], i) << split_method_name(split);
     EXPECT_EQ(order.size(), boxes.size());

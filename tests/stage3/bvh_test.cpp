@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <tuple>
 
@@ -53,8 +54,10 @@ TEST(BvhAgainstNaive, Bunny) {
   expect_builders_agree_with_naive(bunny(), random_rays(*bunny(), 1000, 2));
 }
 
-// Every node's box holds its children's, every primitive is in exactly one leaf, no interior node
-// is empty, and the depth stays within the bound that the fixed traversal stack relies on.
+// Every node's box is exactly the box around its children's (a leaf's: its primitives'; a larger
+// box only costs visits, so nothing else would notice), every primitive is in exactly one leaf,
+// no interior node is empty, and the depth stays within the bound that the fixed traversal stack
+// relies on.
 void expect_valid_tree(const Bvh& bvh, const std::vector<Aabb>& bounds) {
   const size_t n = bounds.size();
   ASSERT_FALSE(bvh.nodes.empty());
@@ -71,17 +74,21 @@ void expect_valid_tree(const Bvh& bvh, const std::vector<Aabb>& bounds) {
       if (n > 0) {
         EXPECT_GT(node.count, 0) << "empty leaf";
       }
+      Aabb tight;
       for (std::uint32_t slot = node.offset; slot < node.offset + node.count; ++slot) {
         ASSERT_LT(slot, n);
         ++seen[bvh.order[slot]];
-        EXPECT_TRUE(node.bounds.contains(bounds[bvh.order[slot]]));
+        tight.expand(bounds[bvh.order[slot]]);
       }
+      EXPECT_TRUE(node.bounds.lo == tight.lo && node.bounds.hi == tight.hi) << "leaf " << index << "'s box is not tight";
     } else {
+      Aabb tight;
       for (const std::uint32_t child : {node.offset, node.offset + 1}) {
         ASSERT_LT(child, bvh.nodes.size());
-        EXPECT_TRUE(node.bounds.contains(bvh.nodes[child].bounds)) << "child " << child << " outside its parent";
+        tight.expand(bvh.nodes[child].bounds);
         stack.push_back({child, d + 1});
       }
+      EXPECT_TRUE(node.bounds.lo == tight.lo && node.bounds.hi == tight.hi) << "node " << index << "'s box is not tight";
     }
   }
   for (size_t i = 0; i < n; ++i) EXPECT_EQ(seen[i], 1) << "primitive " << i;
@@ -283,6 +290,37 @@ TEST(BvhLayout, WideLeavesOfUpToFourTrianglesArePacks) {
   EXPECT_EQ(BvhAggregate(moller_trumbore, options).packs(), 0u);
   options.triangle_packs = false;
   EXPECT_EQ(BvhAggregate(bunny(), options).packs(), 0u);
+}
+
+// The packs are filled in chunks, a chunk per build thread: on any number of threads the 4-wide
+// tree, its packs and so every answer come out the same.
+TEST(BvhLayout, PacksComeOutTheSameOnAnyNumberOfThreads) {
+  const BvhAggregate one(bunny(), BvhBuildOptions{.wide = true, .build_threads = 1});
+  const BvhAggregate three(bunny(), BvhBuildOptions{.wide = true, .build_threads = 3});
+  ASSERT_EQ(one.packs(), three.packs());
+  const auto &a = one.wide_bvh()->nodes, &b = three.wide_bvh()->nodes;
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i)
+    for (int c = 0; c < WideBvhNode::kWidth; ++c)
+      ASSERT_TRUE(a[i].child[c] == b[i].child[c] && a[i].count[c] == b[i].count[c]) << "node " << i << " child " << c;
+  for (const Ray& ray : random_rays(*bunny(), 3000, 5)) {
+    const auto x = one.closest_hit(ray, Interval::positive()), y = three.closest_hit(ray, Interval::positive());
+    ASSERT_EQ(x.has_value(), y.has_value());
+    if (x) {
+      EXPECT_TRUE(x->t == y->t && x->index == y->index && x->b1 == y->b1 && x->b2 == y->b2);
+    }
+  }
+}
+
+TEST(BvhLayout, ChunksCoverEveryIndexOnce) {
+  for (const size_t count : {0, 1, 2, 5, 1000})
+    for (const int threads : {1, 2, 3, 8}) {
+      std::vector<std::atomic<int>> visits(count);
+      for_each_chunk(count, threads, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) ++visits[i];
+      });
+      for (size_t i = 0; i < count; ++i) EXPECT_EQ(visits[i], 1) << count << " indices, " << threads << " threads, index " << i;
+    }
 }
 
 // Small arrays start on a cache line; from 2 MiB on, on a huge page's boundary. A vector that grows
