@@ -33,7 +33,10 @@ void* allocate_huge(size_t bytes) {
 }
 
 void for_each_chunk(size_t count, int threads, const std::function<void(size_t, size_t)>& body) {
-  const auto chunks = size_t(threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency())));
+  // Starting a thread costs tens of microseconds: a chunk of fewer indices is not worth one.
+  constexpr size_t kMinChunk = 1024;
+  const auto wanted = size_t(threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency())));
+  const size_t chunks = std::max<size_t>(1, std::min(wanted, count / kMinChunk));
   std::vector<std::future<void>> others;
   for (size_t c = 0; c + 1 < chunks; ++c) {
     auto run = [&body, begin = count * c / chunks, end = count * (c + 1) / chunks] { body(begin, end); };

@@ -82,8 +82,9 @@ struct BvhStats {
 };
 
 // Calls body(begin, end) for `threads` contiguous chunks of [0, count) at the same time, each on a
-// thread of its own (0: one per core; the calling thread takes the last chunk). The chunks depend
-// on the thread count, so what body makes of an index must not.
+// thread of its own (0: one per core; fewer where a chunk would hold under 1,024 indices; the
+// calling thread takes the last chunk). The chunks depend on the thread count, so what body makes
+// of an index must not.
 void for_each_chunk(size_t count, int threads, const std::function<void(size_t begin, size_t end)>& body);
 
 // Memory of `bytes` on 2 MiB boundaries, in huge pages where the system grants them; free() frees it.

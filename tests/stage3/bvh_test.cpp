@@ -312,14 +312,18 @@ TEST(BvhLayout, PacksComeOutTheSameOnAnyNumberOfThreads) {
   }
 }
 
+// Every index once, in as many chunks as threads, except where a chunk would hold under 1,024.
 TEST(BvhLayout, ChunksCoverEveryIndexOnce) {
-  for (const size_t count : {0, 1, 2, 5, 1000})
+  for (const size_t count : {0, 1, 2, 5, 1000, 2048, 5000, 100003})
     for (const int threads : {1, 2, 3, 8}) {
       std::vector<std::atomic<int>> visits(count);
+      std::atomic<int> chunks{0};
       for_each_chunk(count, threads, [&](size_t begin, size_t end) {
+        ++chunks;
         for (size_t i = begin; i < end; ++i) ++visits[i];
       });
       for (size_t i = 0; i < count; ++i) EXPECT_EQ(visits[i], 1) << count << " indices, " << threads << " threads, index " << i;
+      EXPECT_EQ(chunks, std::max<size_t>(1, std::min(size_t(threads), count / 1024))) << count << " indices, " << threads << " threads";
     }
 }
 
