@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 #include "common/float4.h"
+#include "common/parallel.h"
 #include "common/task.h"
 
 #include <sys/mman.h>
@@ -15,7 +16,6 @@
 #include <new>
 #include <optional>
 #include <system_error>
-#include <thread>
 
 namespace rt {
 
@@ -32,20 +32,27 @@ void* allocate_huge(size_t bytes) {
   return p;
 }
 
+namespace {
+
+// `task` on a thread of its own; where no thread is to be had, the future's get() runs it.
+template <class Task>
+auto start(Task task) -> std::future<decltype(task())> {
+  try {
+    return std::async(std::launch::async, task);
+  } catch (const std::system_error&) {
+    return std::async(std::launch::deferred, task);
+  }
+}
+
+}  // namespace
+
 void for_each_chunk(size_t count, int threads, const std::function<void(size_t, size_t)>& body) {
   // Starting a thread costs tens of microseconds: a chunk of fewer indices is not worth one.
   constexpr size_t kMinChunk = 1024;
-  const auto wanted = size_t(threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency())));
-  const size_t chunks = std::max<size_t>(1, std::min(wanted, count / kMinChunk));
+  const size_t chunks = std::max<size_t>(1, std::min(size_t(resolve_thread_count(threads)), count / kMinChunk));
   std::vector<std::future<void>> others;
-  for (size_t c = 0; c + 1 < chunks; ++c) {
-    auto run = [&body, begin = count * c / chunks, end = count * (c + 1) / chunks] { body(begin, end); };
-    try {
-      others.push_back(std::async(std::launch::async, run));
-    } catch (const std::system_error&) {  // no thread to be had: run it here, at get()
-      others.push_back(std::async(std::launch::deferred, run));
-    }
-  }
+  for (size_t c = 0; c + 1 < chunks; ++c)
+    others.push_back(start([&body, begin = count * c / chunks, end = count * (c + 1) / chunks] { body(begin, end); }));
   body(count * (chunks - 1) / chunks, count);
   for (std::future<void>& other : others) other.get();
 }
@@ -386,13 +393,8 @@ class Builder {
       // copied afterwards (building both apart, as this did before, copied every node once per
       // level of spawning: 24 MB each at 10^6 triangles).
       Builder second(primitives_, options_, spawn_depth_);
-      auto build_second = [&] { return std::move(second).build_subtree(at, end, split->right, depth + 1); };
-      std::future<Nodes> second_nodes;
-      try {
-        second_nodes = std::async(std::launch::async, build_second);
-      } catch (const std::system_error&) {  // no thread to be had: build it here, after the first
-        second_nodes = std::async(std::launch::deferred, build_second);
-      }
+      std::future<Nodes> second_nodes =
+          start([&] { return std::move(second).build_subtree(at, end, split->right, depth + 1); });
       build_node(first, begin, at, split->left, depth + 1);
       append(first + 1, second_nodes.get());
       return;
@@ -424,8 +426,7 @@ Bvh build_bvh(std::span<const Aabb> primitive_bounds, const BvhBuildOptions& opt
   }
   // With k levels of spawning up to 2^k subtrees are built at once: one level more than the
   // threads need, so that a core whose subtree was the smaller one of an uneven split finds work.
-  const int threads = options.build_threads > 0 ? options.build_threads
-                                                : int(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = resolve_thread_count(options.build_threads);
   const int spawn_depth = threads > 1 ? std::bit_width(unsigned(threads - 1)) + 1 : 0;
   return Builder(primitives, options, spawn_depth).build(extent);
 }
