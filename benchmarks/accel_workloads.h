@@ -7,7 +7,9 @@
 #include "03-acceleration/bvh_aggregate.h"
 #include "common/random.h"
 
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -75,7 +77,16 @@ inline std::vector<Ray> coherent_rays(const Primitives& set, int side) {
 // Embree 3 over one triangle mesh, default (medium) build quality, one ray at a time.
 class EmbreeMesh {
  public:
-  explicit EmbreeMesh(const TriangleMesh& mesh) : device_(rtcNewDevice(nullptr)), scene_(rtcNewScene(device_)) {
+  explicit EmbreeMesh(const TriangleMesh& mesh) : device_(rtcNewDevice(nullptr)) {
+    // Every allocation the device makes from here on is counted: its copy of the mesh and its BVH.
+    rtcSetDeviceMemoryMonitorFunction(
+        device_,
+        [](void* bytes, ssize_t change, bool) {
+          *static_cast<std::atomic<std::int64_t>*>(bytes) += change;  // from the build's threads
+          return true;
+        },
+        &bytes_);
+    scene_ = rtcNewScene(device_);
     RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                  3 * sizeof(float), mesh.positions.size()));
@@ -97,6 +108,9 @@ class EmbreeMesh {
   EmbreeMesh(const EmbreeMesh&) = delete;
   EmbreeMesh& operator=(const EmbreeMesh&) = delete;
 
+  // The memory the device holds: its mesh (vertices and indices) and its BVH, as Embree reports them.
+  size_t bytes() const { return size_t(bytes_.load()); }
+
   std::optional<float> closest_hit(const Ray& ray) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -113,8 +127,10 @@ class EmbreeMesh {
   }
 
  private:
+  // Before device_: the monitor writes to it from the device's first allocation on.
+  std::atomic<std::int64_t> bytes_{0};
   RTCDevice device_;
-  RTCScene scene_;
+  RTCScene scene_ = nullptr;
 };
 #endif
 

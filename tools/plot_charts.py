@@ -80,7 +80,7 @@ def offset_vs_scale(charts):
 
 ACCEL_STYLE = {"naive": ("o-", "#7f8c8d"), "median": ("s-", "#c0392b"), "middle": ("^-", "#d68910"),
                "sah": ("D-", "#2471a3"), "sah-wide-slots": ("P:", "#a569bd"), "sah-wide": ("P-", "#6c3483"),
-               "embree": ("x--", "#17a589")}
+               "sah-wide-compact": ("*-.", "#1f618d"), "embree": ("x--", "#17a589")}
 
 
 def accel_time_per_ray(charts):
@@ -121,6 +121,30 @@ def accel_build_vs_trace(charts):
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(charts / "stage3-build-vs-trace.png", dpi=110)
+    plt.close(fig)
+
+
+def accel_memory_vs_speed(charts):
+    rows = [r for r in read_rows(charts / "stage3-accel.csv")
+            if r["accel"] != "naive" and r["mesh"] in ("bunny", "sphere 1e6")]
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.4))
+    for ax, mesh in zip(axes, ("bunny", "sphere 1e6")):
+        for accel, (style, colour) in ACCEL_STYLE.items():
+            mine = [r for r in rows if r["accel"] == accel and r["mesh"] == mesh]
+            if not mine:
+                continue
+            ax.plot([float(r["bytes_per_triangle"]) for r in mine], [float(r["incoherent_ns_per_ray"]) for r in mine],
+                    style[0], color=colour, label=accel, ms=9)
+        ax.axvline(64, color="grey", lw=0.8, ls=":")
+        ax.text(65, ax.get_ylim()[1] * 0.95, "64 bytes", color="grey", fontsize=8, va="top")
+        ax.set(xlabel="mesh + structure, bytes per triangle", title=f"{mesh}, incoherent rays, one thread")
+        ax.set_ylim(bottom=0)
+        ax.grid(True, alpha=0.3)
+    axes[0].set_ylabel("time per ray (ns)")
+    axes[0].legend(fontsize=8)
+    fig.suptitle("Stage 3: memory against speed (compact packs read their corners from the mesh)")
+    fig.tight_layout()
+    fig.savefig(charts / "stage3-memory-vs-speed.png", dpi=110)
     plt.close(fig)
 
 
@@ -239,6 +263,7 @@ def main(root):
     offset_vs_scale(charts)
     accel_time_per_ray(charts)
     accel_build_vs_trace(charts)
+    accel_memory_vs_speed(charts)
     direct_error_vs_time(charts)
     path_error_vs_time(charts)
     path_convergence(charts)

@@ -36,6 +36,11 @@ struct BvhBuildOptions {
   // triangle_pack.h), tested in one SIMD test; false keeps every leaf slot by slot. The SAH
   // builder then prices a leaf of up to kPackSize primitives as one pack test (leaf_cost).
   bool triangle_packs = true;
+  // Store each pack as the numbers of its triangles in their mesh (20 bytes) instead of their
+  // corners (144 + 16), and gather the corners from the mesh at every test: Embree's "compact"
+  // layout, a third of the memory for a dependent load per corner. Packs then hold triangles of
+  // one mesh; a leaf that mixes meshes keeps its slots.
+  bool compact_packs = false;
   // Threads that may build subtrees at once; 0: one per core. The tree is the same for any count.
   int build_threads = 0;
   // SAH cost model (MacDonald & Booth 1990): C(split) = kTraversalCost + kIntersectionCost *

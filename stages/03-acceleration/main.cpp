@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
   CommonOptions options;
   std::string debug_name = "none", accel_name = "sah";
   int leaf_size = 4;
-  bool wide = false;
+  bool wide = false, compact = false;
 
   return run_stage_program(
       argc, argv, "stage3", "Stage 3: Whitted ray tracing over a bounding volume hierarchy", options,
@@ -52,6 +52,9 @@ int main(int argc, char** argv) {
         app.add_flag("--wide", wide,
                      "Traverse a 4-wide tree collapsed from the binary one (four box tests at once), testing "
                      "triangles with their corners in SIMD lanes");
+        app.add_flag("--compact", compact,
+                     "With --wide: store each leaf's triangles as their numbers in the mesh and read their corners "
+                     "from it at every test (a third of the BVH's memory; slower on large meshes)");
         app.add_option("--debug", debug_name, "Debug view instead of shading: none, normal, depth, albedo")
             ->check(CLI::IsMember({"none", "normal", "depth", "albedo"}));
       },
@@ -62,6 +65,7 @@ int main(int argc, char** argv) {
         BvhBuildOptions build;
         build.max_leaf_size = leaf_size;
         build.wide = wide;
+        build.compact_packs = compact;
         const bool naive = accel_name == "naive";
         if (!naive) build.split = split_method_from_name(accel_name);
 

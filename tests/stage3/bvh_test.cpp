@@ -292,6 +292,38 @@ TEST(BvhLayout, WideLeavesOfUpToFourTrianglesArePacks) {
   EXPECT_EQ(BvhAggregate(bunny(), options).packs(), 0u);
 }
 
+// Compact packs (BvhBuildOptions::compact_packs) name their triangles and read the corners from the
+// mesh: the same answers bit for bit, primitive numbers included, across meshes (two overlapping
+// spheres, whose leaves may mix meshes: those keep their slots), and on the bunny mesh and BVH
+// together within 64 bytes per triangle, under half the memory of copied packs.
+TEST(BvhLayout, CompactPacksAnswerAsCopiedOnesInUnderHalfTheMemory) {
+  const auto two_meshes = primitives_of({make_uv_sphere(12, 44, 0.3f, 8), make_uv_sphere(10, 30, 0.3f, 9)});
+  for (const auto& set : {two_meshes, bunny()}) {
+    const BvhAggregate copied(set, BvhBuildOptions{.wide = true});
+    const BvhAggregate compact(set, BvhBuildOptions{.wide = true, .compact_packs = true});
+    ASSERT_GT(compact.packs(), set->size() / 5);
+    for (const Ray& ray : random_rays(*set, 4000, 11)) {
+      const auto x = copied.closest_hit(ray, Interval::positive()), y = compact.closest_hit(ray, Interval::positive());
+      ASSERT_EQ(x.has_value(), y.has_value());
+      if (x) {
+        ASSERT_TRUE(x->t == y->t && x->kind == y->kind && x->index == y->index && x->b1 == y->b1 && x->b2 == y->b2)
+            << "t " << x->t << " vs " << y->t << ", triangle " << x->index << " vs " << y->index;
+      }
+      ASSERT_EQ(copied.occluded(ray, Interval::positive()), compact.occluded(ray, Interval::positive()));
+    }
+  }
+  EXPECT_EQ(packed_and_unpacked_leaves(BvhAggregate(two_meshes, BvhBuildOptions{.wide = true})).second, 0u);
+  EXPECT_GT(packed_and_unpacked_leaves(BvhAggregate(two_meshes, BvhBuildOptions{.wide = true, .compact_packs = true})).second, 0u);
+
+  const TriangleMesh& mesh = bunny()->store_of<TriangleKind>().meshes[0].geometry;
+  const double triangles = double(mesh.triangles.size());
+  const double mesh_bytes = double(mesh.positions.size() * sizeof(Vec3) + mesh.triangles.size() * (sizeof(mesh.triangles[0]) + 4));
+  const size_t copied = BvhAggregate(bunny(), BvhBuildOptions{.wide = true}).bytes();
+  const size_t compact = BvhAggregate(bunny(), BvhBuildOptions{.wide = true, .compact_packs = true}).bytes();
+  EXPECT_LT(2 * compact, copied);
+  EXPECT_LE((mesh_bytes + double(compact)) / triangles, 64.0);
+}
+
 // The packs are filled in chunks, a chunk per build thread: on any number of threads the 4-wide
 // tree, its packs and so every answer come out the same.
 TEST(BvhLayout, PacksComeOutTheSameOnAnyNumberOfThreads) {

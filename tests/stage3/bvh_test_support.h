@@ -24,6 +24,7 @@ struct Builder {
   int leaf_size;
   bool wide = false;  // traversed as the 4-wide tree collapsed from it
   bool packs = true;  // the 4-wide tree's leaves of triangles stored as packs
+  bool compact = false;  // the packs naming their triangles, corners read from the mesh
 
   BvhBuildOptions options() const {
     BvhBuildOptions o;
@@ -31,6 +32,7 @@ struct Builder {
     o.max_leaf_size = leaf_size;
     o.wide = wide;
     o.triangle_packs = packs;
+    o.compact_packs = compact;
     return o;
   }
 };
@@ -39,7 +41,8 @@ inline const Builder kBuilders[] = {{"median", SplitMethod::median, 4}, {"middle
                              {"sah", SplitMethod::sah, 4},       {"median_leaf1", SplitMethod::median, 1},
                              {"sah_leaf16", SplitMethod::sah, 16},    {"sah_wide", SplitMethod::sah, 4, true},
                              {"median_leaf1_wide", SplitMethod::median, 1, true},
-                             {"sah_wide_slots", SplitMethod::sah, 4, true, false}};
+                             {"sah_wide_slots", SplitMethod::sah, 4, true, false},
+                             {"sah_wide_compact", SplitMethod::sah, 4, true, true, true}};
 
 // The stage-3 tests search stage 2's kinds: spheres and triangles.
 using Primitives = WhittedPrimitives;

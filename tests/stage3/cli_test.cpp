@@ -19,7 +19,7 @@ TEST(Stage3Cli, EveryAcceleratorRendersTheSamePicture) {
   ScratchDir dir;
   const std::string scene = source_path("assets/scenes/whitted.json").string();
   std::vector<Image> images;
-  for (const char* accel : {"naive", "median", "middle", "sah", "sah --wide"}) {
+  for (const char* accel : {"naive", "median", "middle", "sah", "sah --wide", "sah --wide --compact"}) {
     const auto out = dir / (std::to_string(images.size()) + ".pfm");
     const auto r = run_command(stage3("--scene " + scene + " --width 64 --height 40 --spp 1 --accel " + accel +
                                       " --out " + out.string()), dir);
