@@ -83,14 +83,25 @@ ACCEL_STYLE = {"naive": ("o-", "#7f8c8d"), "median": ("s-", "#c0392b"), "middle"
                "sah-wide-compact": ("*-.", "#1f618d"), "embree": ("x--", "#17a589")}
 
 
+def each_accel(rows, keep=lambda r: True):
+    """(accel, style, colour, its rows that `keep` keeps), for each accelerator that has any."""
+    for accel, (style, colour) in ACCEL_STYLE.items():
+        mine = [r for r in rows if r["accel"] == accel and keep(r)]
+        if mine:
+            yield accel, style, colour, mine
+
+
+def save(fig, path):
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def accel_time_per_ray(charts):
     rows = [r for r in read_rows(charts / "stage3-accel.csv") if r["mesh"] != "bunny"]
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.4), sharey=True)
     for ax, kind in zip(axes, ("incoherent", "coherent")):
-        for accel, (style, colour) in ACCEL_STYLE.items():
-            mine = [r for r in rows if r["accel"] == accel]
-            if not mine:
-                continue
+        for accel, style, colour, mine in each_accel(rows):
             ax.loglog([int(r["triangles"]) for r in mine], [float(r[f"{kind}_ns_per_ray"]) for r in mine], style,
                       color=colour, label=accel)
         ax.set(xlabel="triangles (jittered UV sphere)", title=f"{kind} rays, one thread")
@@ -98,18 +109,13 @@ def accel_time_per_ray(charts):
     axes[0].set_ylabel("time per ray (ns)")
     axes[0].legend(fontsize=8)
     fig.suptitle("Stage 3: naive is linear in the triangle count, a BVH about logarithmic")
-    fig.tight_layout()
-    fig.savefig(charts / "stage3-time-per-ray.png", dpi=110)
-    plt.close(fig)
+    save(fig, charts / "stage3-time-per-ray.png")
 
 
 def accel_build_vs_trace(charts):
     rows = [r for r in read_rows(charts / "stage3-accel.csv") if r["accel"] not in ("naive",)]
     fig, ax = plt.subplots(figsize=(8, 4.8))
-    for accel, (style, colour) in ACCEL_STYLE.items():
-        mine = [r for r in rows if r["accel"] == accel and int(r["triangles"]) >= 900]
-        if not mine:
-            continue
+    for accel, style, colour, mine in each_accel(rows, lambda r: int(r["triangles"]) >= 900):
         ax.loglog([float(r["build_ms"]) for r in mine], [float(r["incoherent_ns_per_ray"]) for r in mine], style[0],
                   color=colour, label=accel, ms=7)
         for r in mine:
@@ -119,9 +125,7 @@ def accel_build_vs_trace(charts):
            title="Stage 3: build cost against traversal speed, per builder and mesh")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(charts / "stage3-build-vs-trace.png", dpi=110)
-    plt.close(fig)
+    save(fig, charts / "stage3-build-vs-trace.png")
 
 
 def accel_memory_vs_speed(charts):
@@ -129,10 +133,7 @@ def accel_memory_vs_speed(charts):
             if r["accel"] != "naive" and r["mesh"] in ("bunny", "sphere 1e6")]
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.4))
     for ax, mesh in zip(axes, ("bunny", "sphere 1e6")):
-        for accel, (style, colour) in ACCEL_STYLE.items():
-            mine = [r for r in rows if r["accel"] == accel and r["mesh"] == mesh]
-            if not mine:
-                continue
+        for accel, style, colour, mine in each_accel(rows, lambda r: r["mesh"] == mesh):
             ax.plot([float(r["bytes_per_triangle"]) for r in mine], [float(r["incoherent_ns_per_ray"]) for r in mine],
                     style[0], color=colour, label=accel, ms=9)
         ax.axvline(64, color="grey", lw=0.8, ls=":")
@@ -143,9 +144,7 @@ def accel_memory_vs_speed(charts):
     axes[0].set_ylabel("time per ray (ns)")
     axes[0].legend(fontsize=8)
     fig.suptitle("Stage 3: memory against speed (compact packs read their corners from the mesh)")
-    fig.tight_layout()
-    fig.savefig(charts / "stage3-memory-vs-speed.png", dpi=110)
-    plt.close(fig)
+    save(fig, charts / "stage3-memory-vs-speed.png")
 
 
 ESTIMATOR_STYLE = {"uniform": ("v-", "tab:gray"), "cosine": ("s-", "tab:olive"), "brdf": ("^-", "tab:blue"),
