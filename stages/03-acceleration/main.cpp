@@ -49,12 +49,13 @@ int main(int argc, char** argv) {
             ->check(CLI::IsMember({"naive", "median", "middle", "sah"}));
         app.add_option("--leaf-size", leaf_size, "Largest leaf a BVH builder makes without trying to split")
             ->transform(decimal(1, 255));
-        app.add_flag("--wide", wide,
+        CLI::Option* wide_flag = app.add_flag("--wide", wide,
                      "Traverse a 4-wide tree collapsed from the binary one (four box tests at once), testing "
                      "triangles with their corners in SIMD lanes");
         app.add_flag("--compact", compact,
                      "With --wide: store each leaf's triangles as their numbers in the mesh and read their corners "
-                     "from it at every test (a third of the BVH's memory; slower on large meshes)");
+                     "from it at every test (a third of the BVH's memory; slower on large meshes)")
+            ->needs(wide_flag);
         app.add_option("--debug", debug_name, "Debug view instead of shading: none, normal, depth, albedo")
             ->check(CLI::IsMember({"none", "normal", "depth", "albedo"}));
       },
@@ -98,8 +99,8 @@ int main(int argc, char** argv) {
           std::printf("stage3: %zu nodes, %zu leaves, depth %zu, primitives per leaf %.2f mean / %zu max, SAH cost %.1f\n",
                       s.nodes, s.leaves, s.depth, s.mean_leaf_primitives, s.max_leaf_primitives, s.sah_cost);
           if (bvh->wide_bvh())
-            std::printf("stage3: collapsed into %zu 4-wide nodes, %zu leaves stored as triangle packs\n",
-                        bvh->wide_bvh()->nodes.size(), bvh->packs());
+            std::printf("stage3: collapsed into %zu 4-wide nodes, %zu leaves stored as %s triangle packs\n",
+                        bvh->wide_bvh()->nodes.size(), bvh->packs(), compact ? "compact" : "copied");
           if (triangles > 0)
             std::printf("stage3: memory %.1f bytes per triangle (mesh %.1f + BVH %.1f)\n",
                         double(mesh_bytes + bvh->bytes()) / double(triangles), double(mesh_bytes) / double(triangles),

@@ -73,6 +73,7 @@ TEST(Stage3Cli, BadFlagsAreUsageErrors) {
   const std::string base = "--scene " + source_path("assets/scenes/whitted.json").string() + " --out " + (dir / "x.png").string();
   EXPECT_EQ(run_command(stage3(base + " --accel kdtree"), dir).exit_code, 2);
   EXPECT_EQ(run_command(stage3(base + " --leaf-size 0"), dir).exit_code, 2);
+  EXPECT_EQ(run_command(stage3(base + " --compact"), dir).exit_code, 2);  // a layout of the 4-wide tree's leaves
   EXPECT_EQ(run_command(stage3(base + " --leaf-size 256"), dir).exit_code, 2);
   expect_one_line_error(run_command(stage3("--scene " + (dir / "none.json").string() + " --out " + (dir / "x.png").string()), dir),
                         1, "none.json: cannot open scene file");
