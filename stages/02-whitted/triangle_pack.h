@@ -12,7 +12,6 @@
 
 #include "02-whitted/triangle_lanes.h"
 
-#include <array>
 #include <cstdint>
 #include <cstring>
 #include <span>
@@ -38,15 +37,16 @@ struct alignas(16) TrianglePack {
   }
   Vec3 vertex(int lane, int c) const { return Vec3(corner[c][0][lane], corner[c][1][lane], corner[c][2][lane]); }
 
-  // The pack of four triangles of one mesh, gathered from its arrays: lane i holds the triangle
-  // numbered lanes[i]. Always inlined: stage 3's compact leaves (BvhBuildOptions::compact_packs)
-  // gather a pack at every test, and the rows then go from registers to the test, not to memory.
-  [[gnu::always_inline]] static TrianglePack gather(const Vec3* positions, const std::array<std::uint32_t, 3>* triangles,
-                                                    const std::uint32_t* lanes) {
+  // The pack gathered from a mesh's vertices: lane i's corner c is base[corner[c][i]]. Always
+  // inlined: stage 3's compact leaves (BvhBuildOptions::compact_packs) gather a pack at every test,
+  // and its rows then go from registers to the test. Four scalar loads per row: loaded whole and
+  // transposed in SSE registers, the corners went through the stack in a loop (docs/stage3.md,
+  // ladder step 12).
+  [[gnu::always_inline]] static TrianglePack gather(const Vec3* base, const std::uint16_t (&corner)[3][kLanes]) {
     TrianglePack pack;
     for (int c = 0; c < 3; ++c) {
-      const float* p[kLanes];  // corner c of each lane's triangle
-      for (int lane = 0; lane < kLanes; ++lane) p[lane] = &positions[triangles[lanes[lane]][size_t(c)]].x;
+      const float* p[kLanes];
+      for (int lane = 0; lane < kLanes; ++lane) p[lane] = &base[corner[c][lane]].x;
       for (int axis = 0; axis < 3; ++axis) {
         const Float4 row{p[0][axis], p[1][axis], p[2][axis], p[3][axis]};
         std::memcpy(pack.corner[c][axis], &row, sizeof row);
