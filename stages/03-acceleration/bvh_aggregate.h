@@ -280,9 +280,10 @@ BvhAggregate<Set>::BvhAggregate(std::shared_ptr<const Set> primitives, const Bvh
 
 template <class Set>
 void BvhAggregate<Set>::store_wide_leaves(std::shared_ptr<const Set> primitives, const BvhBuildOptions& options) {
-  // A leaf becomes a pack when it holds one to four triangles (of one mesh, for a compact pack)
-  // and the scene's triangle test is the watertight one, whose answers the pack's test gives bit
-  // for bit; any other leaf keeps its primitives in slots, copied out in leaf order.
+  // A leaf becomes a pack when it holds one to four triangles (for a compact pack, of one mesh and
+  // within kCompactSpread vertex numbers) and the scene's triangle test is the watertight one,
+  // whose answers the pack's test gives bit for bit; any other leaf keeps its primitives in slots,
+  // copied out in leaf order.
   const std::array<std::uint32_t, Set::kKinds + 1> first = first_of_each_kind(*primitives);
   bool may_pack = false;
   if constexpr (kTriangles < Set::kKinds) {

@@ -53,8 +53,8 @@ int main(int argc, char** argv) {
                      "Traverse a 4-wide tree collapsed from the binary one (four box tests at once), testing "
                      "triangles with their corners in SIMD lanes");
         app.add_flag("--compact", compact,
-                     "With --wide: store each leaf's triangles as their numbers in the mesh and read their corners "
-                     "from it at every test (a third of the BVH's memory; slower on large meshes)")
+                     "With --wide: store each leaf's triangles as vertex numbers in their mesh and read the corners "
+                     "from it at every test (40 % less memory; leaves that mix meshes stay slots)")
             ->needs(wide_flag);
         app.add_option("--debug", debug_name, "Debug view instead of shading: none, normal, depth, albedo")
             ->check(CLI::IsMember({"none", "normal", "depth", "albedo"}));
