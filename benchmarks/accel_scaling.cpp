@@ -59,14 +59,6 @@ struct Row {
   double bytes_per_triangle;  // the mesh and the structure together
 };
 
-// What the mesh itself takes (positions, corner numbers, and each triangle's mesh), per triangle.
-double mesh_bytes_per_triangle(const Primitives& set) {
-  const TriangleMesh& mesh = the_mesh(set);
-  return double(mesh.positions.size() * sizeof(Vec3) + mesh.triangles.size() * sizeof(mesh.triangles[0])) /
-             double(mesh.triangles.size()) +
-         double(sizeof(std::uint32_t));
-}
-
 void print_row(const Row& r) {
   std::printf("%-16s %-11s %8zu triangles: %9.1f ns/ray incoherent, %9.1f coherent, build %8.1f ms, %6.1f bytes/triangle\n",
               r.accel.c_str(), r.mesh.c_str(), r.triangles, r.incoherent_ns, r.coherent_ns, r.build_ms,
@@ -92,7 +84,7 @@ int main(int argc, char** argv) {
   std::map<std::pair<std::string, std::string>, double> incoherent;  // (accel, mesh) -> ns
   for (const auto& [name, set] : meshes) {
     const std::vector<Ray> scattered = incoherent_rays(*set, 16384), camera = coherent_rays(*set, 128);
-    const double mesh_bytes = mesh_bytes_per_triangle(*set);
+    const double mesh_bytes = double(set->store_of<TriangleKind>().bytes()) / double(set->size());
     auto measure = [&](const std::string& accel, const Aggregate& a, double build_ms, double sah_cost, size_t bytes) {
       auto trace = [&a](const Ray& ray) { return a.closest_hit(ray, Interval::positive()).has_value(); };
       const Row row{accel,      name,     set->size(), ns_per_ray(scattered, trace), ns_per_ray(camera, trace),

@@ -16,6 +16,15 @@ struct TriangleKind {
     TriangleMethod method = TriangleMethod::watertight;
 
     void add_mesh(TriangleMesh mesh, int material, int shape);
+    // What the meshes take for intersecting: positions, corner numbers, and each triangle's mesh
+    // (the vertex normals, which only shading reads, left out). Stage 3 counts it with its BVH.
+    size_t bytes() const {
+      size_t total = mesh_of.size() * sizeof(mesh_of[0]);
+      for (const Placed<TriangleMesh>& m : meshes)
+        total += m.geometry.positions.size() * sizeof(m.geometry.positions[0]) +
+                 m.geometry.triangles.size() * sizeof(m.geometry.triangles[0]);
+      return total;
+    }
   };
   using Hot = TriangleCorners;  // the corners, copied out of the mesh axis by axis
 

@@ -90,11 +90,7 @@ int main(int argc, char** argv) {
         std::printf("stage3: %zu triangles, %zu spheres; accelerator %s", triangles, spheres, accel_name.c_str());
         if (const auto* bvh = dynamic_cast<const BvhAggregate<WhittedPrimitives>*>(&counter->inner())) {
           const BvhStats s = bvh->stats();
-          const TriangleKind::Store& store = scene.primitives().store_of<TriangleKind>();
-          size_t mesh_bytes = store.mesh_of.size() * sizeof(store.mesh_of[0]);
-          for (const Placed<TriangleMesh>& m : store.meshes)
-            mesh_bytes += m.geometry.positions.size() * sizeof(Vec3) +
-                          m.geometry.triangles.size() * sizeof(m.geometry.triangles[0]);
+          const size_t mesh_bytes = scene.primitives().store_of<TriangleKind>().bytes();
           std::printf(" (leaf size %d%s), built in %.3f s\n", leaf_size, wide ? ", 4-wide" : "", build_seconds);
           std::printf("stage3: %zu nodes, %zu leaves, depth %zu, primitives per leaf %.2f mean / %zu max, SAH cost %.1f\n",
                       s.nodes, s.leaves, s.depth, s.mean_leaf_primitives, s.max_leaf_primitives, s.sah_cost);
