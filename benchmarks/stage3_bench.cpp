@@ -1,6 +1,7 @@
 // Stage 3 timings (Google Benchmark): time per ray for the naive aggregate and each BVH builder on
 // meshes of 10^2 ... 10^6 triangles and on the Stanford bunny, with incoherent and coherent rays,
-// on 1 and 2 threads; build time per builder and size; Embree on the same rays when installed.
+// on 1 and 2 threads; build time per builder and size; a path tracer's bounce and shadow rays in the
+// Cornell box; Embree on the same rays when installed.
 // Run: build/release/bin/stage3_bench   (--benchmark_filter=Trace/sah to pick)
 #include "accel_workloads.h"
 #include "common/obj_loader.h"
@@ -67,6 +68,25 @@ void trace(benchmark::State& state, const std::string& accel, bool coherent) {
   state.counters["hit_fraction"] = double(hits) / double(state.iterations());
 }
 
+const PathRays& cornell_rays() {
+  static const PathRays rays = path_rays(RT_SOURCE_DIR "/assets/scenes/cornell-box.json", 1 << 16);
+  return rays;
+}
+
+template <class Closest, class Occluded>
+void cornell_queries(benchmark::State& state, const PathRays& r, bool shadow, Closest&& closest, Occluded&& occluded) {
+  size_t i = 0, hits = 0;
+  for (auto _ : state) {
+    const size_t k = i++ % r.bounce.size();
+    const bool hit = shadow ? occluded(r.shadow[k], r.shadow_length[k]) : closest(r.bounce[k], Interval::positive());
+    hits += hit ? 1 : 0;
+    benchmark::DoNotOptimize(hit);
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["ns_per_ray"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["hit_fraction"] = double(hits) / double(state.iterations());
+}
+
 void register_all() {
   for (const bool coherent : {false, true}) {
     const std::string kind = coherent ? "coherent" : "incoherent";
@@ -95,7 +115,24 @@ void register_all() {
     for (const int id : {2, 3, 4, 5, 6, 0}) b->Arg(id);
     b->Unit(benchmark::kMillisecond)->UseRealTime();
   }
+  // A path tracer's queries in the Cornell box (its 32 triangles), one thread: each vertex's bounce
+  // ray (closest hit) and its shadow ray to the light (any hit), through the tree the renderers
+  // build and, below, through Embree. docs/stage5.md (where the time goes) uses the ratio.
+  for (const bool shadow : {false, true})
+    benchmark::RegisterBenchmark(shadow ? "Cornell/shadow/sah-wide" : "Cornell/bounce/sah-wide", [shadow](benchmark::State& s) {
+      const PathRays& r = cornell_rays();
+      static const BvhAggregate<Primitives> tree(r.scene, BvhBuildOptions{.wide = true});
+      cornell_queries(s, r, shadow, [](const Ray& ray, Interval range) { return tree.closest_hit(ray, range).has_value(); },
+                      [](const Ray& ray, float length) { return tree.occluded(ray, Interval{0.0f, length}); });
+    });
 #if RT_HAVE_EMBREE
+  for (const bool shadow : {false, true})
+    benchmark::RegisterBenchmark(shadow ? "Cornell/shadow/embree" : "Cornell/bounce/embree", [shadow](benchmark::State& s) {
+      const PathRays& r = cornell_rays();
+      static const EmbreeMesh embree(the_mesh(*r.scene));
+      cornell_queries(s, r, shadow, [](const Ray& ray, Interval) { return embree.closest_hit(ray).has_value(); },
+                      [](const Ray& ray, float length) { return embree.occluded(ray, length); });
+    });
   auto* embree_build = benchmark::RegisterBenchmark("Build/embree", [](benchmark::State& s) {
     const auto set = mesh(int(s.range(0)));
     for (auto _ : s) benchmark::DoNotOptimize(EmbreeMesh(the_mesh(*set)));
