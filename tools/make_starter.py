@@ -17,7 +17,8 @@ every stage building and running. --others keep is for a class that starts mid-c
 Instructor-only material never goes in: the hidden tests (tests/hidden/) and their names in
 grading/tests.json, the render checks' references (grading/references/: a stored answer a program
 could write instead of rendering), the grader's own proofs (tests/grading/, which plant bugs into
-solutions) and the repository's CI (.ci/). Only files git tracks or would track are copied (no
+solutions), the mutation tool and its list of equivalent mutants (tools/mutation.py and
+grading/equivalent-mutants.json, which quote solution lines) and the repository's CI (.ci/). Only files git tracks or would track are copied (no
 build folders). Exits 1 with one line if DEST exists (unless
 --force) or the markers are malformed.
 """
@@ -30,7 +31,8 @@ import sys
 
 import task_regions
 
-INSTRUCTOR_ONLY = ("tests/hidden/", "tests/grading/", ".ci/", "grading/references/")
+INSTRUCTOR_ONLY = ("tests/hidden/", "tests/grading/", ".ci/", "grading/references/", "tools/mutation.py",
+                   "grading/equivalent-mutants.json")
 
 
 def parse_stages(text):
