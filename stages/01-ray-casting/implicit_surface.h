@@ -53,7 +53,9 @@ struct ImplicitHit {
 //     never leaves it, so the first |g| below the tolerance is the nearest root;
 //  3. if a step does change the sign of g (a bound that is not exact), bisect the bracket;
 //  4. polish with Newton steps, t -= g / g', g' = grad f . d, kept while they shrink |g|.
-// A ray that grazes the surface makes sphere tracing crawl; after kMaxSteps it counts as a miss.
+// A ray that grazes the surface makes sphere tracing crawl: a root found at step n counts only for
+// n < kMaxSphereTracingSteps (ImplicitHit::steps = n; the first |g| is step 0), so a ray that
+// needs kMaxSphereTracingSteps steps or more is a miss.
 std::optional<ImplicitHit> intersect_implicit(const ImplicitSurface& surface, const Ray& ray,
                                               Interval range);
 

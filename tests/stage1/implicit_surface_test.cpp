@@ -146,6 +146,66 @@ TEST(Torus, TiltedAndMovedTorusGivesTheSameDistances) {
   EXPECT_NEAR(hit->t, 7.5f, 1e-5f);
 }
 
+TEST(Torus, ScaledTorusIsHitAtTheScaledDistance) {
+  // The torus and the ray scaled by s: the hit scales with them. The tolerance must scale too:
+  // at s = 1000 the coordinates' rounding (~1e-3) is far above a fixed 1e-5.
+  for (const float s : {1e-3f, 1.0f, 1e3f}) {
+    const TorusSurface scaled(Torus{Vec3(0), Vec3(0, 1, 0), 2.0f * s, 0.5f * s});
+    const auto hit = intersect_implicit(scaled, Ray{Vec3(-2.0f * s, 10.0f * s, 0), Vec3(0, -1, 0)}, Interval::positive());
+    ASSERT_TRUE(hit) << "scale " << s;
+    EXPECT_NEAR(hit->t, 9.5f * s, 1e-5f * 9.5f * s) << "scale " << s;
+  }
+}
+
+// The unit sphere's distance times 1.5: a bound that overestimates (not 1-Lipschitz), so a
+// sphere-tracing step from outside lands inside, and intersect_implicit must bisect the bracket
+// (its step 3) and polish the root within it. Beyond the bounding sphere it is flat (4.5, with
+// gradient 0), so Newton's method started there, outside the bracket, goes nowhere.
+class SteepSphere final : public ImplicitSurface {
+ public:
+  float distance(Vec3 p) const override { return 1.5f * std::min(glm::length(p) - 1.0f, 3.0f); }
+  Vec3 gradient(Vec3 p) const override { return glm::length(p) < 4.0f ? 1.5f * glm::normalize(p) : Vec3(0); }
+  Sphere bounding_sphere() const override { return Sphere{Vec3(0), 4.0f}; }
+};
+
+TEST(Torus, AnOverestimatingBoundIsBisectedToTheNearestRoot) {
+  // From z = -10 towards the unit sphere, entering its bounding sphere at z = -4: the first step,
+  // 1.5 x 3, lands at z = 0.5, inside. Offsets up to 0.4 from the axis keep that landing inside.
+  const SteepSphere surface;
+  for (const float offset : {0.0f, 0.15f, 0.3f, 0.4f}) {
+    const Ray ray{Vec3(offset, 0.5f * offset, -10.0f), Vec3(0, 0, 1)};
+    const float expected = 10.0f - std::sqrt(1.0f - 1.25f * offset * offset);
+    const auto hit = intersect_implicit(surface, ray, Interval::positive());
+    ASSERT_TRUE(hit) << "offset " << offset;
+    EXPECT_NEAR(hit->t, expected, 2e-5f) << "offset " << offset;
+  }
+}
+
+// min(y, 1/64): a valid bound on the distance to the plane y = 0 whose every step above y = 1/64
+// is exactly 1/64, so a ray straight down from y = n / 64 reaches the plane at step n exactly.
+class StaircasePlane final : public ImplicitSurface {
+ public:
+  float distance(Vec3 p) const override { return std::min(p.y, kStep); }
+  Vec3 gradient(Vec3) const override { return Vec3(0, 1, 0); }
+  Sphere bounding_sphere() const override { return Sphere{Vec3(0), 16.0f}; }
+  static constexpr float kStep = 1.0f / 64.0f;
+};
+
+TEST(Torus, TheMarchTakesAtMostItsBudgetOfSteps) {
+  // Found at step n < kMaxSphereTracingSteps; at step n = kMaxSphereTracingSteps it is too late.
+  const StaircasePlane plane;
+  for (const int n : {1, 100, kMaxSphereTracingSteps - 1}) {
+    const auto hit = intersect_implicit(plane, Ray{Vec3(0, float(n) * StaircasePlane::kStep, 0), Vec3(0, -1, 0)},
+                                        Interval::positive());
+    ASSERT_TRUE(hit) << n << " steps";
+    EXPECT_EQ(hit->steps, n);
+    EXPECT_EQ(hit->t, float(n) * StaircasePlane::kStep);
+  }
+  EXPECT_FALSE(intersect_implicit(
+      plane, Ray{Vec3(0, float(kMaxSphereTracingSteps) * StaircasePlane::kStep, 0), Vec3(0, -1, 0)}, Interval::positive()))
+      << "a root that needs kMaxSphereTracingSteps steps or more counts as a miss";
+}
+
 TEST(Torus, GrazingRaysTerminateWithoutNan) {
   // Rays skimming the top of the tube (y = r): sphere tracing slows down; it must still end.
   for (float dy : {0.0f, 1e-7f, 1e-4f, -1e-4f}) {

@@ -54,6 +54,17 @@ TEST(LocalShading, ShadowRayBlocksTheLight) {
   EXPECT_GT(shade_floor_at(scene, Vec3(2, 0, 0)).r, 0.0f) << "outside the shadow";
 }
 
+TEST(LocalShading, AnObjectBeyondTheLightCastsNoShadow) {
+  // The shadow ray ends at the light: a sphere above it (on the same line, farther from the floor)
+  // must not darken the floor, nor must one just beyond the light's distance.
+  for (const float centre_height : {3.0f, 2.3f}) {
+    SceneDescription d = floor_scene(Vec3(0, 2, 0));
+    d.shapes.push_back(Shape{"above the light", Sphere{Vec3(0, centre_height, 0), 0.25f}, 0});
+    const RayCastingScene scene(d);
+    EXPECT_NEAR(shade_floor_at(scene, Vec3(0)).r, 0.5f / kPi, 1e-6f) << "sphere centred at height " << centre_height;
+  }
+}
+
 TEST(LocalShading, LightBelowATwoSidedSurfaceDoesNotLeakThrough) {
   // Seen from above, the floor's shading normal faces up; a light underneath gives nothing.
   const RayCastingScene scene(floor_scene(Vec3(0, -2, 0)));

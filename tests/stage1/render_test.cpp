@@ -115,6 +115,35 @@ TEST(Render, PixelValueIsTheMeanOfItsSamples) {
     }
 }
 
+TEST(Render, SampleBatchesAreTheWholeRendersSamples) {
+  // Samples [2, 5) rendered apart are samples 2, 3 and 4 of the whole render: with a radiance
+  // that is the sample's film position, each batch's sum is the whole render's sum of the same
+  // samples, bit for bit (so batches rendered on other machines add up: docs/scale-out.md).
+  const SceneDescription d = two_spheres();
+  RenderSettings s = d.render;
+  s.width = 6;
+  s.height = 4;
+  const PinholeCamera camera(d.camera, s.width, s.height);
+  const auto position = [](const Ray& ray, Rng&) { return Color(ray.direction.x, ray.direction.y, 0.0f); };
+  const auto sums = [&](int first, int spp) {
+    RenderSettings batch = s;
+    batch.first_sample = first;
+    batch.spp = spp;
+    return render_samples(camera, batch, 1, position);
+  };
+  const SampleSums whole = sums(0, 5), first = sums(0, 2), rest = sums(2, 3);
+  const SampleSums one_by_one[] = {sums(2, 1), sums(3, 1), sums(4, 1)};
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      // The whole render adds its samples in order 0..4, so its sum is (first + sample 2) + 3 + 4.
+      Color expected = first.sum(x, y);
+      for (const SampleSums& one : one_by_one) expected += one.sum(x, y);
+      EXPECT_EQ(whole.sum(x, y), expected) << "pixel " << x << ", " << y;
+      EXPECT_EQ(rest.sum(x, y), one_by_one[0].sum(x, y) + one_by_one[1].sum(x, y) + one_by_one[2].sum(x, y));
+      EXPECT_EQ(rest.count(x, y), 3u);
+    }
+}
+
 TEST(Render, SpheresSceneHasNoNanAndLightsSomething) {
   const SceneDescription d = load_scene(testing::source_path("assets/scenes/spheres.json"));
   RenderSettings s = d.render;

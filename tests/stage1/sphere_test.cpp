@@ -82,6 +82,10 @@ TEST_P(BothSphereForms, NonNormalizedDirectionsScaleT) {
     const auto t = hit(Ray{Vec3(0), Vec3(0, 0, length)}, kUnitAt5);
     ASSERT_TRUE(t) << length;
     EXPECT_NEAR(*t * length, 4.0f, 4e-6f) << "|d| = " << length;
+    // From inside (the near root behind the origin), the far root at t = 1.5 / |d| scales alike.
+    const auto far = hit(Ray{Vec3(0, 0, 4.5f), Vec3(0, 0, length)}, kUnitAt5);
+    ASSERT_TRUE(far) << length;
+    EXPECT_NEAR(*far * length, 1.5f, 2e-6f) << "from inside, |d| = " << length;
   }
 }
 
