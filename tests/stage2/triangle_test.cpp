@@ -122,6 +122,49 @@ INSTANTIATE_TEST_SUITE_P(Triangle, BothTriangleTests,
                                            TriangleTest{"watertight", TriangleMethod::watertight}),
                          [](const auto& info) { return std::string(info.param.name); });
 
+// The watertight test's bound on the rounding error of t (watertight_t_error_bound) must cover
+// that error: a ray that starts exactly on a triangle has t = 0, so any t the test computes is
+// rounding noise, and it must never count as a hit, at any angle, grazing ones included. And the
+// bound must not be absurdly loose: from 10^-3 of the triangle's size above it, the triangle is
+// hit. The corners are multiples of 4 (times a power of two, from 2^-10 to 2^10) and the origin
+// is v0 + (v1 - v0) / 4 + (v2 - v0) / 4: every coordinate exact in float, the origin exactly on the
+// triangle, inside it.
+TEST(WatertightBound, RaysFromOnATriangleNeverHitItAndRaysFromJustAboveDo) {
+  Rng rng(404, 0, 0);
+  const auto corner = [&rng](float scale) {
+    return scale * 64.0f * Vec3(std::floor(rng.uniform() * 2001.0f) - 1000.0f, std::floor(rng.uniform() * 2001.0f) - 1000.0f,
+                               std::floor(rng.uniform() * 2001.0f) - 1000.0f);
+  };
+  int self_hits = 0, rays = 0, near_misses = 0, well_shaped = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const float scale = std::ldexp(1.0f, int(rng.uniform() * 21.0f) - 10);
+    const Vec3 v0 = corner(scale), v1 = corner(scale), v2 = corner(scale);
+    // Near the middle, or near the corner v0, where the corners' sheared coordinates differ most.
+    const float w = i % 2 == 0 ? 0.25f : 1.0f / 64.0f;
+    const Vec3 on = v0 + w * (v1 - v0) + w * (v2 - v0);
+    const Vec3 cross = glm::cross(v1 - v0, v2 - v0);
+    if (glm::length(cross) == 0.0f) continue;
+    const Vec3 normal = glm::normalize(cross);
+    for (int k = 0; k < 4; ++k) {  // directions of every angle: a quarter of them grazing
+      Vec3 d = glm::normalize(Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f);
+      if (k == 0) d = glm::normalize(d - glm::dot(d, normal) * normal + 1e-3f * normal);
+      ++rays;
+      self_hits += intersect_triangle_watertight(Ray{on, d}, v0, v1, v2, Interval::positive()).has_value();
+    }
+    // Well shaped (area at least a tenth of the longest edge squared): from just above, a hit.
+    const float longest = std::max({glm::length(v1 - v0), glm::length(v2 - v1), glm::length(v0 - v2)});
+    if (0.5f * glm::length(cross) < 0.1f * longest * longest) continue;
+    ++well_shaped;
+    const Vec3 above = on + 1e-3f * longest * normal;
+    near_misses += !intersect_triangle_watertight(Ray{above, -normal}, v0, v1, v2, Interval::positive());
+    near_misses += !intersect_triangle_watertight(Ray{on - 1e-3f * longest * normal, normal}, v0, v1, v2,
+                                                  Interval::positive());
+  }
+  EXPECT_EQ(self_hits, 0) << "of " << rays << " rays that start on a triangle";
+  EXPECT_GT(well_shaped, 1000);
+  EXPECT_EQ(near_misses, 0) << "of " << 2 * well_shaped << " rays from 1e-3 of its size above or below it";
+}
+
 // The crack test (stages/experiments/triangle_leaks.h): rays from inside a closed, jittered mesh
 // aimed exactly at its shared edges and vertices, at four scales. 3,168 edge rays and 266 vertex
 // rays per scale.

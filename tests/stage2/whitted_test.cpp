@@ -69,6 +69,20 @@ TEST(Whitted, TwoFacingMirrorsStopAtTheDepthLimit) {
   EXPECT_EQ(whitted_radiance(scene, steep, depth(0)), Color(0.0f));
 }
 
+TEST(Whitted, BranchPruningWeighsEachBranchByTheReflectancesBehindIt) {
+  // The mirrors above (reflectance 0.5); from x = -0.9 with slope 0.3 per unit z the ray meets
+  // them at x = -0.6, 0, 0.6 and escapes: 0.5^3 of the background. Its third reflection carries
+  // weight 0.125, so a threshold above that prunes it (black), and one at or below it does not.
+  const WhittedScene scene(scene_of({mirror(Color(0.5f))},
+                                    {Shape{"near", Quad{{Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)}}, 0},
+                                     Shape{"far", Quad{{Vec3(-1, -1, 2), Vec3(-1, 1, 2), Vec3(1, 1, 2), Vec3(1, -1, 2)}}, 0}},
+                                    Color(1.0f)));
+  const Ray ray{Vec3(-0.9f, 0, 1), glm::normalize(Vec3(0.3f, 0, 1))};
+  EXPECT_NEAR(whitted_radiance(scene, ray, depth(10, FresnelModel::exact, 0.1f)).r, 0.125f, 1e-6f);
+  EXPECT_NEAR(whitted_radiance(scene, ray, depth(10, FresnelModel::exact, 0.125f)).r, 0.125f, 1e-6f);
+  EXPECT_EQ(whitted_radiance(scene, ray, depth(10, FresnelModel::exact, 0.2f)), Color(0.0f));
+}
+
 // A glass ball in a uniform environment neither absorbs nor emits, so with R + T = 1 at every
 // interface it returns exactly the environment's radiance (a furnace test for the recursion).
 // Rays stay within |x| < 0.85 of the axis, where the light lost to the depth limit is below 1e-5;
