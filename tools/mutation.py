@@ -106,7 +106,7 @@ def template_brackets(tokens):
         while j < len(tokens) and key(tokens[j]) in TEMPLATE_INSIDE:
             depth += {"<": 1, ">": -1}.get(tokens[j].text, 0)
             if depth == 0:
-                found.update({i, j} | {k for k in range(i, j) if tokens[k].text in "<>"})
+                found.update(k for k in range(i, j + 1) if tokens[k].text in ("<", ">"))
                 break
             j += 1
     return found
@@ -130,9 +130,9 @@ def operand_end(tokens, i):
              "*=", "/=", "&", "|", "^", "}"}
     while j < len(tokens):
         t = tokens[j].text
-        if t in "([{":
+        if t in ("(", "[", "{"):
             depth += 1
-        elif t in ")]}":
+        elif t in (")", "]", "}"):
             if depth == 0:
                 return j
             depth -= 1
@@ -201,8 +201,7 @@ def line_mutants(line):
             if j is not None:
                 commas, depth = [], 0
                 for k in range(i + 2, j):
-                    depth += tokens[k].text in "([{" and 1 or 0
-                    depth -= tokens[k].text in ")]}" and 1 or 0
+                    depth += (tokens[k].text in ("(", "[", "{")) - (tokens[k].text in (")", "]", "}"))
                     if depth == 0 and tokens[k].text == ",":
                         commas.append(k)
                 if len(commas) == 1 and commas[0] > i + 2 and j > commas[0] + 1:
