@@ -159,18 +159,18 @@ TEST(Torus, ScaledTorusIsHitAtTheScaledDistance) {
 
 // The unit sphere's distance times 1.5: a bound that overestimates (not 1-Lipschitz), so a
 // sphere-tracing step from outside lands inside, and intersect_implicit must bisect the bracket
-// (its step 3) and polish the root within it. Beyond the bounding sphere it is flat (4.5, with
-// gradient 0), so Newton's method started there, outside the bracket, goes nowhere.
+// (its step 3) and polish the root within it. From 3.5 out it is flat (3.75, with gradient 0), so
+// Newton's method started there, far from the root, goes nowhere.
 class SteepSphere final : public ImplicitSurface {
  public:
-  float distance(Vec3 p) const override { return 1.5f * std::min(glm::length(p) - 1.0f, 3.0f); }
-  Vec3 gradient(Vec3 p) const override { return glm::length(p) < 4.0f ? 1.5f * glm::normalize(p) : Vec3(0); }
+  float distance(Vec3 p) const override { return 1.5f * std::min(glm::length(p) - 1.0f, 2.5f); }
+  Vec3 gradient(Vec3 p) const override { return glm::length(p) < 3.5f ? 1.5f * glm::normalize(p) : Vec3(0); }
   Sphere bounding_sphere() const override { return Sphere{Vec3(0), 4.0f}; }
 };
 
 TEST(Torus, AnOverestimatingBoundIsBisectedToTheNearestRoot) {
   // From z = -10 towards the unit sphere, entering its bounding sphere at z = -4: the first step,
-  // 1.5 x 3, lands at z = 0.5, inside. Offsets up to 0.4 from the axis keep that landing inside.
+  // 3.75, lands at z = -0.25, inside. Offsets up to 0.4 from the axis keep that landing inside.
   const SteepSphere surface;
   for (const float offset : {0.0f, 0.15f, 0.3f, 0.4f}) {
     const Ray ray{Vec3(offset, 0.5f * offset, -10.0f), Vec3(0, 0, 1)};
