@@ -116,6 +116,40 @@ TEST(Whitted, GlassSlabPassesWhatFresnelLetsThrough) {
   EXPECT_NEAR(seen.r, (1 - r) * (1 - r) / (1 - r * r), 1e-5f);
 }
 
+TEST(Whitted, TheDepthLimitCountsRefractedRaysToo) {
+  // The slab above, face-on: through it takes two refractions, so a limit of one bounce lets
+  // nothing through (the front's reflection meets the black wall), and a limit of two lets through
+  // (1 - R)^2 exactly, without the slab's inner reflections, which need four.
+  Material black;
+  black.albedo = Color(0.0f);
+  const float h = 0.1f;
+  const WhittedScene scene(scene_of(
+      {glass(1.5f), black},
+      {Shape{"front", Quad{{Vec3(-1, -1, -h), Vec3(-1, 1, -h), Vec3(1, 1, -h), Vec3(1, -1, -h)}}, 0},
+       Shape{"back", Quad{{Vec3(-1, -1, h), Vec3(1, -1, h), Vec3(1, 1, h), Vec3(-1, 1, h)}}, 0},
+       Shape{"wall behind", Quad{{Vec3(-5, -5, -2), Vec3(5, -5, -2), Vec3(5, 5, -2), Vec3(-5, 5, -2)}}, 1}},
+      Color(1.0f)));
+  const Ray ray{Vec3(0.2f, 0.1f, -1), Vec3(0, 0, 1)};
+  EXPECT_EQ(whitted_radiance(scene, ray, depth(1)), Color(0.0f));
+  EXPECT_NEAR(whitted_radiance(scene, ray, depth(2)).r, 0.96f * 0.96f, 1e-5f);
+  EXPECT_NEAR(whitted_radiance(scene, ray, depth(3)).r, 0.96f * 0.96f, 1e-5f);
+}
+
+TEST(Whitted, BranchPruningWeighsTheRefractedBranchByTheLightItPasses) {
+  // One glass surface seen at 87 degrees from its normal, white all round: it reflects R > 1/2 and
+  // passes 1 - R into the glass, where the ray meets nothing more. Unpruned, R + (1 - R) = 1; with a
+  // threshold of 1/2 the refracted branch, of weight 1 - R, is cut off and only R is left.
+  const WhittedScene scene(scene_of({glass(1.5f)},
+                                    {Shape{"glass", Quad{{Vec3(-9, 0, -9), Vec3(-9, 0, 9), Vec3(9, 0, 9), Vec3(9, 0, -9)}}, 0}},
+                                    Color(1.0f)));
+  const float cos_i = 0.05f;
+  const Ray ray{Vec3(-15, 0.5f, 0), Vec3(std::sqrt(1.0f - cos_i * cos_i), -cos_i, 0)};  // meets it at x = -5
+  const float r = fresnel_dielectric(cos_i, 1.0f, 1.5f);
+  ASSERT_GT(r, 0.5f);
+  EXPECT_NEAR(whitted_radiance(scene, ray, depth(5, FresnelModel::exact, 0.0f)).r, 1.0f, 1e-5f);
+  EXPECT_NEAR(whitted_radiance(scene, ray, depth(5, FresnelModel::exact, 0.5f)).r, r, 1e-5f);
+}
+
 TEST(Whitted, BranchPruningBoundsTheRayTreeBetweenGlassAndMirrors) {
   // A glass slab between two perfect mirrors: every ray splits at each glass face and nothing
   // is absorbed, so without pruning the tree would hold 2^200 rays. With it, at most 1 / min_weight
