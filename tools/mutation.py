@@ -36,6 +36,7 @@ import pathlib
 import random
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -399,6 +400,8 @@ def main():
     parser.add_argument("--write-doc", action="store_true", help="rewrite the table in docs/instructors.md")
     parser.add_argument("--check", action="store_true", help="exit 1 when a stage scores below 95 %%")
     args = parser.parse_args()
+    # Stopped (ctest's time limit, kill), the planted mutant is still taken out: `finally` runs.
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit("mutation.py: stopped"))
 
     everything = mutants_of(ROOT, set(args.stages))
     equivalent = load_equivalent()
