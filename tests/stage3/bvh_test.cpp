@@ -207,6 +207,27 @@ TEST_P(Builders, ThreadsBuildTheSameTreeAsOne) {
 
 INSTANTIATE_TEST_SUITE_P(Bvh, Builders, ::testing::ValuesIn(kBuilders), [](const auto& info) { return std::string(info.param.name); });
 
+TEST(SahSplit, SeparatesTwoClustersOfUnequalSize) {
+  // Four unit boxes at x = 0 and twelve at x = 100, their centroids on one line (y and z equal):
+  // the SAH's root split must part the clusters, 4 | 12, where the median would put 8 | 8 and
+  // give one child a box 101 wide. Every boundary between used bins must be priced, the last
+  // included, and an axis along which the centroids spread must be binned.
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 16; ++i) {
+    const float x = i < 4 ? 0.0f : 100.0f;
+    boxes.push_back(Aabb{Vec3(x, 0, 0), Vec3(x + 1, 1, 1)});
+  }
+  BvhBuildOptions options;
+  options.split = SplitMethod::sah;
+  const Bvh bvh = build_bvh(boxes, options);
+  ASSERT_FALSE(bvh.nodes.empty());
+  const BvhNode& root = bvh.nodes[0];
+  ASSERT_FALSE(root.is_leaf);
+  const BvhNode &a = bvh.nodes[root.offset], &b = bvh.nodes[root.offset + 1];
+  EXPECT_LE(a.bounds.hi.x - a.bounds.lo.x, 1.0f);
+  EXPECT_LE(b.bounds.hi.x - b.bounds.lo.x, 1.0f);
+}
+
 TEST(BvhLayout, NodesAreThirtyTwoBytes) {
   EXPECT_EQ(sizeof(BvhNode), 32u);
   EXPECT_EQ(alignof(BvhNode), 4u);
