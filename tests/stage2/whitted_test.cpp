@@ -98,19 +98,23 @@ TEST(Whitted, GlassBallInAUniformEnvironmentDisappears) {
     }
 }
 
+// A glass slab 0.2 thick across z = 0, white beyond it, a black wall behind the camera (z < 0).
+SceneDescription glass_slab() {
+  Material black;
+  black.albedo = Color(0.0f);
+  const float h = 0.1f;
+  return scene_of({glass(1.5f), black},
+                  {Shape{"front", Quad{{Vec3(-1, -1, -h), Vec3(-1, 1, -h), Vec3(1, 1, -h), Vec3(1, -1, -h)}}, 0},
+                   Shape{"back", Quad{{Vec3(-1, -1, h), Vec3(1, -1, h), Vec3(1, 1, h), Vec3(-1, 1, h)}}, 0},
+                   Shape{"wall behind", Quad{{Vec3(-5, -5, -2), Vec3(5, -5, -2), Vec3(5, 5, -2), Vec3(-5, 5, -2)}}, 1}},
+                  Color(1.0f));
+}
+
 TEST(Whitted, GlassSlabPassesWhatFresnelLetsThrough) {
   // A glass slab seen face-on, white beyond it, a black wall behind the camera. Each face
   // reflects R = 0.04 at normal incidence; light bouncing inside the slab forms a geometric
   // series, so the slab passes (1 - R)^2 (1 + R^2 + R^4 + ...) = (1 - R)^2 / (1 - R^2) = 0.923077.
-  Material black;
-  black.albedo = Color(0.0f);
-  const float h = 0.1f;
-  const WhittedScene scene(scene_of(
-      {glass(1.5f), black},
-      {Shape{"front", Quad{{Vec3(-1, -1, -h), Vec3(-1, 1, -h), Vec3(1, 1, -h), Vec3(1, -1, -h)}}, 0},
-       Shape{"back", Quad{{Vec3(-1, -1, h), Vec3(1, -1, h), Vec3(1, 1, h), Vec3(-1, 1, h)}}, 0},
-       Shape{"wall behind", Quad{{Vec3(-5, -5, -2), Vec3(5, -5, -2), Vec3(5, 5, -2), Vec3(-5, 5, -2)}}, 1}},
-      Color(1.0f)));
+  const WhittedScene scene(glass_slab());
   const Color seen = whitted_radiance(scene, Ray{Vec3(0.2f, 0.1f, -1), Vec3(0, 0, 1)}, depth(30));
   const float r = 0.04f;
   EXPECT_NEAR(seen.r, (1 - r) * (1 - r) / (1 - r * r), 1e-5f);
@@ -120,15 +124,7 @@ TEST(Whitted, TheDepthLimitCountsRefractedRaysToo) {
   // The slab above, face-on: through it takes two refractions, so a limit of one bounce lets
   // nothing through (the front's reflection meets the black wall), and a limit of two lets through
   // (1 - R)^2 exactly, without the slab's inner reflections, which need four.
-  Material black;
-  black.albedo = Color(0.0f);
-  const float h = 0.1f;
-  const WhittedScene scene(scene_of(
-      {glass(1.5f), black},
-      {Shape{"front", Quad{{Vec3(-1, -1, -h), Vec3(-1, 1, -h), Vec3(1, 1, -h), Vec3(1, -1, -h)}}, 0},
-       Shape{"back", Quad{{Vec3(-1, -1, h), Vec3(1, -1, h), Vec3(1, 1, h), Vec3(-1, 1, h)}}, 0},
-       Shape{"wall behind", Quad{{Vec3(-5, -5, -2), Vec3(5, -5, -2), Vec3(5, 5, -2), Vec3(-5, 5, -2)}}, 1}},
-      Color(1.0f)));
+  const WhittedScene scene(glass_slab());
   const Ray ray{Vec3(0.2f, 0.1f, -1), Vec3(0, 0, 1)};
   EXPECT_EQ(whitted_radiance(scene, ray, depth(1)), Color(0.0f));
   EXPECT_NEAR(whitted_radiance(scene, ray, depth(2)).r, 0.96f * 0.96f, 1e-5f);
