@@ -78,6 +78,11 @@ def strip_file(path, stages, problems, handouts):
 
 
 def tracked_files(root):
+    """The files git tracks or would track, instructor-only material left out."""
+    return [f for f in repository_files(root) if not f.startswith(INSTRUCTOR_ONLY)]
+
+
+def repository_files(root):
     """The files git tracks or would track; outside a git checkout (an unpacked archive), every
     file but build outputs."""
     try:
@@ -87,7 +92,7 @@ def tracked_files(root):
         skipped = {".git", "build", "out", "__pycache__"}
         listing = [p.relative_to(root).as_posix() for p in root.rglob("*")
                    if p.is_file() and not skipped & set(p.relative_to(root).parts)]
-    return [f for f in listing if f and not f.startswith(INSTRUCTOR_ONLY)]
+    return [f for f in listing if f]
 
 
 def without_hidden_tests(text):

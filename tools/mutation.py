@@ -41,6 +41,7 @@ import subprocess
 import sys
 import time
 
+import make_starter
 import task_regions
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
@@ -294,18 +295,14 @@ class Workspace:
         self.src = pathlib.Path(work) / "src"
         self.build = self.src / "build" / "release"
         self.test_timeout = test_timeout
-        ignore = shutil.ignore_patterns("build", ".git", "__pycache__", "*.pyc")
-        if self.src.exists():  # refresh the sources, keep the build
-            for path in sorted(ROOT.rglob("*")):
-                rel = path.relative_to(ROOT)
-                if rel.parts[0] in ("build", ".git") or "__pycache__" in rel.parts or not path.is_file():
-                    continue
-                target = self.src / rel
-                if not target.exists() or target.read_bytes() != path.read_bytes():
-                    target.parent.mkdir(parents=True, exist_ok=True)
-                    shutil.copy(path, target)  # a new time stamp, so that the build sees the change
-        else:
-            shutil.copytree(ROOT, self.src, ignore=ignore)
+        # The tree's files, hidden tests included; an earlier copy keeps its build, and a file that
+        # changed since gets a new time stamp, so that the build sees the change.
+        for name in make_starter.repository_files(ROOT):
+            path, target = ROOT / name, self.src / name
+            if not path.is_file() or (target.exists() and target.read_bytes() == path.read_bytes()):
+                continue
+            target.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy(path, target)
         code, out = run(["cmake", "--preset", "release"], self.src, 600)
         if code != 0:
             sys.exit(f"mutation.py: configuring the copy in {self.src} failed:\n{out[-2000:]}")
