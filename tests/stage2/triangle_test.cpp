@@ -126,9 +126,9 @@ INSTANTIATE_TEST_SUITE_P(Triangle, BothTriangleTests,
 // that error: a ray that starts exactly on a triangle has t = 0, so any t the test computes is
 // rounding noise, and it must never count as a hit, at any angle, grazing ones included. And the
 // bound must not be absurdly loose: from 10^-3 of the triangle's size above it, the triangle is
-// hit. The corners are multiples of 4 (times a power of two, from 2^-10 to 2^10) and the origin
-// is v0 + (v1 - v0) / 4 + (v2 - v0) / 4: every coordinate exact in float, the origin exactly on the
-// triangle, inside it.
+// hit. The corners are multiples of 64 (times a power of two, from 2^-10 to 2^10) and the origin
+// is v0 + w (v1 - v0) + w (v2 - v0) with w = 1/4 or 1/64: every coordinate exact in float, the
+// origin exactly on the triangle, inside it.
 TEST(WatertightBound, RaysFromOnATriangleNeverHitItAndRaysFromJustAboveDo) {
   Rng rng(404, 0, 0);
   const auto corner = [&rng](float scale) {

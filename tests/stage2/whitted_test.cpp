@@ -53,14 +53,19 @@ TEST(Whitted, MirrorShowsWhatItFacesTimesItsReflectance) {
   EXPECT_EQ(whitted_radiance(scene, ray, depth(0)), Color(0.0f)) << "no bounce allowed: black";
 }
 
+// Two 2 x 2 mirrors of reflectance 0.5 facing each other at z = 0 and z = 2, white all round.
+SceneDescription facing_mirrors() {
+  return scene_of({mirror(Color(0.5f))},
+                  {Shape{"near", Quad{{Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)}}, 0},
+                   Shape{"far", Quad{{Vec3(-1, -1, 2), Vec3(-1, 1, 2), Vec3(1, 1, 2), Vec3(1, -1, 2)}}, 0}},
+                  Color(1.0f));
+}
+
 TEST(Whitted, TwoFacingMirrorsStopAtTheDepthLimit) {
   // Parallel mirrors at z = 0 and z = 2; a ray bouncing straight between them never escapes, and
   // every depth limit gives black. A slanted ray escapes after the bounces it needs, each
   // weighted by the reflectance 0.5.
-  const WhittedScene scene(scene_of({mirror(Color(0.5f))},
-                                    {Shape{"near", Quad{{Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)}}, 0},
-                                     Shape{"far", Quad{{Vec3(-1, -1, 2), Vec3(-1, 1, 2), Vec3(1, 1, 2), Vec3(1, -1, 2)}}, 0}},
-                                    Color(1.0f)));
+  const WhittedScene scene(facing_mirrors());
   EXPECT_EQ(whitted_radiance(scene, Ray{Vec3(0, 0, 1), Vec3(0, 0, 1)}, depth(50)), Color(0.0f));
   // From (0.5, 0, 1) at 45 degrees in x: hits z = 2 at x = 1.5 > 1: escapes at once.
   // Aimed more steeply, slope 0.3 per unit z: x = 0.5, 0.8, 1.4 -> hits at x = 0.8, then escapes.
@@ -70,13 +75,10 @@ TEST(Whitted, TwoFacingMirrorsStopAtTheDepthLimit) {
 }
 
 TEST(Whitted, BranchPruningWeighsEachBranchByTheReflectancesBehindIt) {
-  // The mirrors above (reflectance 0.5); from x = -0.9 with slope 0.3 per unit z the ray meets
-  // them at x = -0.6, 0, 0.6 and escapes: 0.5^3 of the background. Its third reflection carries
-  // weight 0.125, so a threshold above that prunes it (black), and one at or below it does not.
-  const WhittedScene scene(scene_of({mirror(Color(0.5f))},
-                                    {Shape{"near", Quad{{Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)}}, 0},
-                                     Shape{"far", Quad{{Vec3(-1, -1, 2), Vec3(-1, 1, 2), Vec3(1, 1, 2), Vec3(1, -1, 2)}}, 0}},
-                                    Color(1.0f)));
+  // From x = -0.9 with slope 0.3 per unit z the ray meets the mirrors at x = -0.6, 0, 0.6 and
+  // escapes: 0.5^3 of the background. Its third reflection carries weight 0.125, so a threshold
+  // above that prunes it (black), and one at or below it does not.
+  const WhittedScene scene(facing_mirrors());
   const Ray ray{Vec3(-0.9f, 0, 1), glm::normalize(Vec3(0.3f, 0, 1))};
   EXPECT_NEAR(whitted_radiance(scene, ray, depth(10, FresnelModel::exact, 0.1f)).r, 0.125f, 1e-6f);
   EXPECT_NEAR(whitted_radiance(scene, ray, depth(10, FresnelModel::exact, 0.125f)).r, 0.125f, 1e-6f);
