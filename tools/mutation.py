@@ -24,10 +24,14 @@ The work happens in a copy of the tree (default /tmp/rt-mutation), never in this
       [--seed 1] [--work DIR] [--write-doc] [--check]
   tools/mutation.py --stages 1 --only sphere_       every mutant whose name contains the text
 
+  tools/mutation.py --stages 2 --recheck          the holes of stage 2's last run, run again
+
 --sample N tests a fixed-seed sample of N mutants per stage (all of them when a stage has fewer);
 --write-doc rewrites the measured stages' lines of the table in docs/instructors.md; --check exits
-1 when a stage scores below 95 %. Results go to WORK/results.json; --report reads them again, so
-that survivors newly listed as equivalent count without a new run.
+1 when a stage scores below 95 %. Results go to WORK/results.json, a stage's replacing that stage's
+earlier ones; --report reads them again, so that survivors newly listed as equivalent count without
+a new run. --recheck runs the holes of the last run again after a test was added: a hole a test
+now kills counts as killed, and the table's date says when the holes were re-run.
 """
 import argparse
 import dataclasses
@@ -303,7 +307,10 @@ class Workspace:
                 continue
             target.parent.mkdir(parents=True, exist_ok=True)
             shutil.copy(path, target)
-        code, out = run(["cmake", "--preset", "release"], self.src, 600)
+        # The standard library's bounds checks on (_GLIBCXX_ASSERTIONS): a mutant that indexes past
+        # an array's end then stops its test, as the sanitize preset would, instead of scribbling
+        # on the stack unseen. tools/grade.py builds students' trees the same way.
+        code, out = run(["cmake", "--preset", "release", "-DCMAKE_CXX_FLAGS=-D_GLIBCXX_ASSERTIONS"], self.src, 600)
         if code != 0:
             sys.exit(f"mutation.py: configuring the copy in {self.src} failed:\n{out[-2000:]}")
 
@@ -357,7 +364,7 @@ TABLE_HEAD = ["| stage | mutants | killed | equivalent | holes | not compiling |
               "|---|---:|---:|---:|---:|---:|---:|---|"]
 
 
-def table_rows(rows, when):
+def table_rows(rows):
     """{stage: the table's line} for the stages measured."""
     out = {}
     for stage, r in sorted(rows.items()):
@@ -365,7 +372,7 @@ def table_rows(rows, when):
         score = f"{100.0 * r['killed'] / scored:.1f} %" if scored else "–"
         sampled = f"{r['tested']} of {r['all']}" if r["tested"] < r["all"] else str(r["all"])
         out[stage] = (f"| {stage} | {sampled} | {r['killed']} | {r['equivalent']} | {r['holes']} | "
-                      f"{r['not compiling']} | {score} | {when} |")
+                      f"{r['not compiling']} | {score} | {r['measured']} |")
     return out
 
 
@@ -396,6 +403,8 @@ def main():
                         "in --work, its survivors judged against today's equivalent list")
     parser.add_argument("--write-doc", action="store_true", help="rewrite the table in docs/instructors.md")
     parser.add_argument("--check", action="store_true", help="exit 1 when a stage scores below 95 %%")
+    parser.add_argument("--recheck", action="store_true", help="run the holes of the last run of these stages "
+                        "again, against today's tests")
     args = parser.parse_args()
     # Stopped (ctest's time limit, kill), the planted mutant is still taken out: `finally` runs.
     signal.signal(signal.SIGTERM, lambda *_: sys.exit("mutation.py: stopped"))
@@ -419,28 +428,70 @@ def main():
         return 1 if stale else 0
 
     results_file = pathlib.Path(args.work) / "results.json"
+    earlier = json.loads(results_file.read_text()) if results_file.exists() else {"stages": {}, "mutants": []}
     if args.report:
-        results = json.loads(results_file.read_text())
-    else:
-        results = measure_stages(args, per_stage, chosen)
+        results = earlier
+    elif args.recheck:
+        results = recheck_holes(args, earlier, everything, equivalent)
         results_file.write_text(json.dumps(results, indent=1, ensure_ascii=False))
-    return summarize(results, equivalent, stale, args)
+    else:
+        measured = measure_stages(args, per_stage, chosen)
+        if args.only:  # a few mutants tried again: shown, not stored as the stage's results
+            return summarize(measured, equivalent, stale, argparse.Namespace(**{**vars(args), "write_doc": False}))
+        # This run's stages replace their earlier results; the other stages' are kept.
+        results = {"stages": {**earlier["stages"], **measured["stages"]},
+                   "mutants": [m for m in earlier["mutants"] if str(m["stage"]) not in measured["stages"]] +
+                   measured["mutants"]}
+        results_file.write_text(json.dumps(results, indent=1, ensure_ascii=False))
+    shown = {s: info for s, info in results["stages"].items() if int(s) in args.stages}
+    return summarize({"stages": shown, "mutants": [m for m in results["mutants"] if str(m["stage"]) in shown]},
+                     equivalent, stale, args)
+
+
+def when_measured():
+    """Today's date and commit, marked when the tree has changes not yet committed."""
+    commit = run(["git", "rev-parse", "--short", "HEAD"], ROOT, 60)[1].strip() or "?"
+    dirty = run(["git", "status", "--porcelain", "--untracked-files=no"], ROOT, 60)[1].strip()
+    return f"{time.strftime('%Y-%m-%d')}, {commit}{' + changes' if dirty else ''}"
+
+
+def recheck_holes(args, results, everything, equivalent):
+    """Runs the holes of the last run of args.stages again, with today's tests, and records the
+    outcome (a mutant is found again by its file, line text and description)."""
+    today = {(m.file, m.code, m.description): m for m in everything}
+    holes = [r for r in results["mutants"] if r["stage"] in args.stages and r["status"] == "survived" and
+             (r["file"], r["code"], r["description"]) not in equivalent]
+    missing = [r for r in holes if (r["file"], r["code"], r["description"]) not in today]
+    if missing:
+        sys.exit("mutation.py: the tool no longer makes " + "; ".join(
+            f"{r['file']}: {r['description']} in `{r['code']}`" for r in missing) + ": measure the stage again")
+    workspace = Workspace(args.work, args.test_timeout)
+    for s in sorted({r["stage"] for r in holes}):
+        code, out = workspace.build_stage(s)
+        if code != 0 or workspace.test_stage(s):
+            sys.exit(f"mutation.py: stage {s}'s tests do not pass on the unmutated tree; fix that first")
+    mutants = [today[(r["file"], r["code"], r["description"])] for r in holes]
+    outcomes = measure(workspace, mutants, lambda text: print(text, flush=True))
+    for index, r in enumerate(holes):
+        r["status"], r["killed_by"] = outcomes[index]
+        r["line"] = mutants[index].line + 1
+    for s in {str(r["stage"]) for r in holes}:
+        workspace.build_stage(int(s))
+        results["stages"][s]["measured"] += f"; holes re-run {when_measured()}"
+    return results
 
 
 def measure_stages(args, per_stage, chosen):
     """Builds the copy, checks that the unmutated tests pass, and runs every chosen mutant."""
     workspace = Workspace(args.work, args.test_timeout)
-    commit = run(["git", "rev-parse", "--short", "HEAD"], ROOT, 60)[1].strip() or "?"
-    dirty = run(["git", "status", "--porcelain", "--untracked-files=no"], ROOT, 60)[1].strip()
-    results = {"measured": f"{time.strftime('%Y-%m-%d')}, {commit}{' + changes' if dirty else ''}", "stages": {},
-               "mutants": []}
+    results = {"stages": {}, "mutants": []}
     for s in args.stages:
         print(f"stage {s}: baseline build and tests", flush=True)
         code, out = workspace.build_stage(s)
         if code != 0 or workspace.test_stage(s):
             sys.exit(f"mutation.py: stage {s}'s tests do not pass on the unmutated tree; fix that first")
         outcomes = measure(workspace, chosen[s], lambda text: print(text, flush=True))
-        results["stages"][str(s)] = {"all": len(per_stage[s]), "tested": len(chosen[s])}
+        results["stages"][str(s)] = {"all": len(per_stage[s]), "tested": len(chosen[s]), "measured": when_measured()}
         for index, (status, detail) in sorted(outcomes.items()):
             m = chosen[s][index]
             results["mutants"].append({**dataclasses.asdict(m), "line": m.line + 1, "status": status,
@@ -462,7 +513,7 @@ def summarize(results, equivalent, stale, args):
         rows[r["stage"]][{"hole": "holes"}.get(status, status)] += 1
         if status == "hole":
             holes.append(r)
-    lines = table_rows(rows, results["measured"])
+    lines = table_rows(rows)
     print("\n".join(TABLE_HEAD + list(lines.values())))
     for r in holes:
         print(f"hole: {r['file']}:{r['line']}: {r['description']} in `{r['code']}` ({r['task']})")

@@ -148,6 +148,17 @@ TEST(Whitted, BranchPruningWeighsTheRefractedBranchByTheLightItPasses) {
   EXPECT_NEAR(whitted_radiance(scene, ray, depth(5, FresnelModel::exact, 0.5f)).r, r, 1e-5f);
 }
 
+TEST(Whitted, BranchPruningWeighsTheReflectedBranchByTheLightItReflects) {
+  // The same surface seen face-on: it reflects R = 0.04 and passes 0.96. With a threshold of 0.1
+  // the reflected branch, of weight R, is cut off and only 1 - R is left.
+  const WhittedScene scene(scene_of({glass(1.5f)},
+                                    {Shape{"glass", Quad{{Vec3(-9, 0, -9), Vec3(-9, 0, 9), Vec3(9, 0, 9), Vec3(9, 0, -9)}}, 0}},
+                                    Color(1.0f)));
+  const Ray ray{Vec3(0.5f, 2, 0.25f), Vec3(0, -1, 0)};
+  EXPECT_NEAR(whitted_radiance(scene, ray, depth(5, FresnelModel::exact, 0.0f)).r, 1.0f, 1e-5f);
+  EXPECT_NEAR(whitted_radiance(scene, ray, depth(5, FresnelModel::exact, 0.1f)).r, 0.96f, 1e-5f);
+}
+
 TEST(Whitted, BranchPruningBoundsTheRayTreeBetweenGlassAndMirrors) {
   // A glass slab between two perfect mirrors: every ray splits at each glass face and nothing
   // is absorbed, so without pruning the tree would hold 2^200 rays. With it, at most 1 / min_weight
@@ -206,6 +217,27 @@ TEST(Whitted, ShadowsAndOneSidedEmission) {
   EXPECT_EQ(whitted_radiance(scene, Ray{Vec3(3.5f, 1.5f, -5), Vec3(0, 0, 1)}, depth(5)), Color(3.0f));
   EXPECT_EQ(whitted_radiance(scene, Ray{Vec3(3.5f, 1.5f, 5), Vec3(0, 0, -1)}, depth(5)), Color(0.0f))
       << "emission leaves the front face only";
+}
+
+// An interpolated shading normal may lean towards a light that the surface itself does not face.
+// The light counts only when it is strictly in front of the geometric surface: one exactly in the
+// surface's plane gives nothing (its light arrives at grazing incidence, cos = 0), one a hair above
+// it gives some.
+TEST(Whitted, ALightInTheSurfacesPlaneGivesNothingWhereverTheShadingNormalLeans) {
+  Material floor;
+  Hit hit;
+  hit.point = Vec3(0.0f);
+  hit.normal = Vec3(0, 1, 0);
+  hit.shading_normal = glm::normalize(Vec3(1, 1, 0));  // leaning towards +x, where the lights are
+  hit.material = 0;
+  const auto lit_by = [&](Vec3 light) {
+    const WhittedScene scene(scene_of({floor}, {Shape{"floor", Plane{Vec3(0), Vec3(0, 1, 0)}, 0}}, Color(0.0f),
+                                      {PointLight{light, Color(10.0f)}}));
+    return shade_direct(scene, hit, Vec3(0, 1, 0), OffsetPolicy{});
+  };
+  EXPECT_EQ(lit_by(Vec3(2, 0, 0)), Color(0.0f)) << "a light in the plane";
+  EXPECT_EQ(lit_by(Vec3(2, -1e-3f, 0)), Color(0.0f)) << "a light below the plane";
+  EXPECT_GT(lit_by(Vec3(2, 1e-3f, 0)).r, 0.0f) << "a light just above the plane";
 }
 
 TEST(Whitted, CheckerAlternatesAndIsStableOnItsPlane) {

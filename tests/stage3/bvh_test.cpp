@@ -228,6 +228,37 @@ TEST(SahSplit, SeparatesTwoClustersOfUnequalSize) {
   EXPECT_LE(b.bounds.hi.x - b.bounds.lo.x, 1.0f);
 }
 
+// The point of the ordered walk (bvh.h): into the nearer child first, so that the first hit shrinks
+// the range and every farther node is dropped unread. 256 unit boxes in a row, one per leaf, seen
+// end on from either side: the nearest box is the first primitive tested and the last, since every
+// other box lies beyond it. Walking into the farther child first tests all 256 (each hit nearer
+// than the one before); the lecture's unordered walk tests them all too.
+TEST(BvhTraversal, EntersTheNearerChildFirstAndDropsWhatLiesBeyondTheHit) {
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 256; ++i) boxes.push_back(Aabb{Vec3(2.0f * float(i), 0, 0), Vec3(2.0f * float(i) + 1, 1, 1)});
+  for (const SplitMethod split : {SplitMethod::median, SplitMethod::middle, SplitMethod::sah}) {
+    BvhBuildOptions options;
+    options.split = split;
+    options.max_leaf_size = 1;
+    const Bvh bvh = build_bvh(boxes, options);
+    for (const float direction : {1.0f, -1.0f}) {
+      const Ray ray{Vec3(direction > 0 ? -10.0f : 600.0f, 0.5f, 0.5f), Vec3(direction, 0, 0)};
+      std::vector<std::uint32_t> tested;
+      const auto hit_box = [&](std::uint32_t slot, Interval range) -> std::optional<float> {
+        tested.push_back(bvh.order[slot]);
+        const Aabb& box = boxes[bvh.order[slot]];
+        const float t = direction > 0 ? box.lo.x - ray.origin.x : ray.origin.x - box.hi.x;
+        return range.surrounds(t) ? std::optional<float>(t) : std::nullopt;
+      };
+      const auto hit = bvh_closest_hit(bvh, ray, Interval::positive(), hit_box);
+      const std::uint32_t nearest = direction > 0 ? 0 : 255;
+      ASSERT_TRUE(hit);
+      EXPECT_EQ(bvh.order[hit->second], nearest);
+      EXPECT_EQ(tested, std::vector<std::uint32_t>{nearest}) << "split " << int(split) << ", direction " << direction;
+    }
+  }
+}
+
 TEST(BvhLayout, NodesAreThirtyTwoBytes) {
   EXPECT_EQ(sizeof(BvhNode), 32u);
   EXPECT_EQ(alignof(BvhNode), 4u);

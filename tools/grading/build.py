@@ -102,9 +102,13 @@ class Builder:
 
     def configure(self, log):
         """Release, warnings not errors (a warning costs a student nothing here; CI checks the
-        instructor's tree with -Werror), test discovery deferred to ctest time."""
+        instructor's tree with -Werror), test discovery deferred to ctest time. The standard
+        library's bounds checks are on (_GLIBCXX_ASSERTIONS): an index past the end of a std::array
+        or std::vector stops the test that made it, where a plain release build would go on with
+        whatever it overwrote."""
         return self._step(["cmake", "-S", str(self.source), "-B", str(self.build), "-G", "Ninja",
-                           "-DCMAKE_BUILD_TYPE=Release", "-DRT_BUILD_BENCHMARKS=OFF", "-DRT_WARNINGS_AS_ERRORS=OFF",
+                           "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_CXX_FLAGS=-D_GLIBCXX_ASSERTIONS",
+                           "-DRT_BUILD_BENCHMARKS=OFF", "-DRT_WARNINGS_AS_ERRORS=OFF",
                            "-DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST"], log, 300)
 
     def build_stage(self, stage, log):
