@@ -81,8 +81,9 @@ TEST(LocalShading, NoSelfShadowingOnACurvedSurface) {
   const RayCastingScene scene(d);
   for (float x = -0.6f; x <= 0.6f; x += 0.05f) {
     const Ray ray{Vec3(x, 0.1f, 0), Vec3(0, 0, 1)};
-    const Hit hit = *scene.closest_hit(ray, Interval::positive());
-    EXPECT_GT(shade_local(scene, hit, -ray.direction).r, 0.0f) << "x = " << x;
+    const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
+    ASSERT_TRUE(hit) << "x = " << x;
+    EXPECT_GT(shade_local(scene, *hit, -ray.direction).r, 0.0f) << "x = " << x;
   }
 }
 
@@ -91,11 +92,13 @@ TEST(LocalShading, EmissionOnlyFromTheFrontFace) {
   d.materials[0].emission = Color(3.0f);
   d.lights.clear();
   const RayCastingScene scene(d);
-  Hit hit = *scene.closest_hit(Ray{Vec3(0, 1, 0), Vec3(0, -1, 0)}, Interval::positive());
-  EXPECT_EQ(shade_local(scene, hit, Vec3(0, 1, 0)), Color(3.0f));
-  hit = *scene.closest_hit(Ray{Vec3(0, -1, 0), Vec3(0, 1, 0)}, Interval::positive());
-  EXPECT_FALSE(hit.front_face);
-  EXPECT_EQ(shade_local(scene, hit, Vec3(0, -1, 0)), Color(0.0f));
+  const std::optional<Hit> above = scene.closest_hit(Ray{Vec3(0, 1, 0), Vec3(0, -1, 0)}, Interval::positive());
+  ASSERT_TRUE(above);
+  EXPECT_EQ(shade_local(scene, *above, Vec3(0, 1, 0)), Color(3.0f));
+  const std::optional<Hit> below = scene.closest_hit(Ray{Vec3(0, -1, 0), Vec3(0, 1, 0)}, Interval::positive());
+  ASSERT_TRUE(below);
+  EXPECT_FALSE(below->front_face);
+  EXPECT_EQ(shade_local(scene, *below, Vec3(0, -1, 0)), Color(0.0f));
 }
 
 TEST(BlinnPhong, LambertOnlyWithoutSpecular) {

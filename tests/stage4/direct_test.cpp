@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 namespace rt {
 namespace {
 
@@ -42,9 +44,9 @@ struct Estimate {
 // The radiance along one fixed ray to the floor point (0, 0, 0), by default from a low position so
 // it passes under every emitter: `samples` independent estimates, their mean and standard error.
 Estimate estimate_at_origin(const LightingScene& scene, DirectEstimator estimator, int samples,
-                            Vec3 origin = Vec3(3.0f, 0.2f, 0.0f)) {
+                            Vec3 origin = Vec3(3.0f, 0.2f, 0.0f), Vec3 target = Vec3(0.0f)) {
   constexpr std::uint64_t seed = 1;
-  const Ray ray{origin, glm::normalize(-origin)};
+  const Ray ray{origin, glm::normalize(target - origin)};
   DirectOptions options;
   options.estimator = estimator;
   double sum = 0.0, sum2 = 0.0;
@@ -68,17 +70,26 @@ void expect_every_estimator_finds(const LightingScene& scene, double exact, int 
 
 TEST(DirectClosedForm, PointLightInverseSquareAndCosineLaw) {
   // I = 8 at height 2 straight above, and I = 4 at distance 2 and 60 degrees off the normal:
-  // E = 8 / 4 + 4 cos(60) / 4 = 2.5, L_r = rho E / pi. Deterministic for every estimator.
+  // E = 8 / 4 + 4 cos(60) / 4 = 2.5, L_r = rho E / pi. Deterministic for every estimator. At the
+  // origin and, lights and all moved along the floor, at a point away from it (where a direction
+  // to the light taken from the origin instead of from the point is wrong).
   const float s = std::sin(radians(60.0f)) * 2.0f, c = std::cos(radians(60.0f)) * 2.0f;
-  const LightingScene scene = floor_scene(R"({"albedo": [0.5, 0.5, 0.5]})", "",
-                                          R"([{"type": "point", "position": [0, 2, 0], "intensity": [8, 8, 8]},
-                                              {"type": "point", "position": [0, )" + std::to_string(c) + ", " +
-                                              std::to_string(s) + R"(], "intensity": [4, 4, 4]}])");
-  const double exact = kAlbedo * 2.5 / kPi;
-  for (const DirectEstimator e : kEstimators) {
-    const Estimate est = estimate_at_origin(scene, e, 16);
-    EXPECT_NEAR(est.mean, exact, 1e-5 * exact) << name(e);
-    EXPECT_LT(est.standard_error, 1e-6) << name(e);
+  for (const Vec3 p : {Vec3(0.0f), Vec3(1.25f, 0.0f, -0.75f)}) {
+    const auto at = [&](float x, float y, float z) {
+      std::ostringstream out;
+      out.precision(9);
+      out << '[' << p.x + x << ", " << y << ", " << p.z + z << ']';
+      return out.str();
+    };
+    const LightingScene scene = floor_scene(R"({"albedo": [0.5, 0.5, 0.5]})", "",
+                                            R"([{"type": "point", "position": )" + at(0, 2, 0) + R"(, "intensity": [8, 8, 8]},
+                                                {"type": "point", "position": )" + at(0, c, s) + R"(, "intensity": [4, 4, 4]}])");
+    const double exact = kAlbedo * 2.5 / kPi;
+    for (const DirectEstimator e : kEstimators) {
+      const Estimate est = estimate_at_origin(scene, e, 16, p + Vec3(3.0f, 0.2f, 0.0f), p);
+      EXPECT_NEAR(est.mean, exact, 1e-5 * exact) << name(e) << " at " << p.x << ", " << p.z;
+      EXPECT_LT(est.standard_error, 1e-6) << name(e);
+    }
   }
 }
 

@@ -177,6 +177,24 @@ TEST(EmitterSampling, SolidAngleAndPdfAgree) {
   }
 }
 
+TEST(EmitterSampling, ConeSamplesLieOnTheSphereFacingTheShadingPoint) {
+  // The cone gives a direction; the sample's point is where that direction first meets the
+  // sphere (the nearer root), so it lies on the sphere, on the cap that x sees. Only the
+  // direction enters the irradiance, so the tests above cannot see a wrong point; a shadow ray
+  // aimed at it would.
+  Rng rng(29, 0, 0);
+  for (const Vec3 x : {Vec3(0.0f), Vec3(0.3f, 0.0f, -0.2f), Vec3(4.0f, -1.0f, 2.0f)}) {
+    const Vec3 center(0, 3, 0);
+    const float radius = 1.0f;
+    const AreaEmitter e{SphereEmitter{center, radius, SphereSampling::cone}, Color(1)};
+    for (int k = 0; k < 1000; ++k) {
+      const EmitterSample s = e.sample(x, rng.uniform2());
+      ASSERT_NEAR(glm::length(s.point - center), radius, 1e-4f) << "sample " << k << " is not on the sphere";
+      ASSERT_GE(glm::dot(s.point - center, x - s.point), -1e-4f) << "sample " << k << " is on the far side";
+    }
+  }
+}
+
 TEST(LightingSceneErrors, RefusesWhatStageFourCannotRender) {
   const std::string head = R"({"camera": {"position": [0, 0, -5], "look_at": [0, 0, 0], "vfov": 40}, "materials": )";
   try {

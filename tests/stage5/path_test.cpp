@@ -105,6 +105,33 @@ TEST(RussianRoulette, LeavesTheExpectationUnchanged) {
   EXPECT_NEAR(b.mean, 1.0, 4.0 * b.standard_error);
 }
 
+TEST(RussianRoulette, SurvivalIsTheLargestThroughputComponentUpTo095) {
+  // The header's rule, P = min(0.95, max component): a path carrying a colour survives as often as
+  // its strongest channel asks (a rarer survival only adds noise, and the tests of the mean above
+  // cannot see noise), and even a path carrying everything ends now and then (P < 1).
+  EXPECT_FLOAT_EQ(survival_probability(Color(0.5f, 0.2f, 0.1f)), 0.5f);
+  EXPECT_FLOAT_EQ(survival_probability(Color(0.01f, 0.3f, 0.02f)), 0.3f);
+  EXPECT_FLOAT_EQ(survival_probability(Color(0.0f, 0.0f, 0.9f)), 0.9f);
+  EXPECT_FLOAT_EQ(survival_probability(Color(1.0f)), 0.95f);
+  EXPECT_FLOAT_EQ(survival_probability(Color(3.0f, 0.1f, 0.1f)), 0.95f);
+}
+
+// Veach's power heuristic (beta = 2) at the points where a slip shows: equal densities share
+// evenly, a delta strategy (infinite density) takes everything, a strategy that cannot make the
+// sample (density 0) takes nothing, and the two weights of one sample add up to 1.
+TEST(PowerHeuristic, WeighsBySquaredDensitiesAndTrustsADeltaFully) {
+  EXPECT_FLOAT_EQ(power_heuristic(2.0f, 2.0f), 0.5f);
+  EXPECT_FLOAT_EQ(power_heuristic(3.0f, 1.0f), 0.9f);
+  EXPECT_FLOAT_EQ(power_heuristic(1.0f, 3.0f), 0.1f);
+  EXPECT_EQ(power_heuristic(kInfinity, 5.0f), 1.0f);
+  EXPECT_EQ(power_heuristic(kInfinity, 0.0f), 1.0f);
+  EXPECT_EQ(power_heuristic(0.0f, 4.0f), 0.0f);
+  EXPECT_EQ(power_heuristic(4.0f, 0.0f), 1.0f);
+  EXPECT_EQ(power_heuristic(0.0f, 0.0f), 0.0f) << "no strategy could make it: weight 0, not 0/0";
+  for (const float a : {0.1f, 0.7f, 2.5f, 40.0f})
+    for (const float b : {0.05f, 1.0f, 9.0f}) EXPECT_NEAR(power_heuristic(a, b) + power_heuristic(b, a), 1.0f, 1e-6f);
+}
+
 TEST(PathRobustness, NoNanOrInfFromGrazingAndCornerPaths) {
   const SceneDescription description = load_scene(testing::source_path("assets/scenes/cornell-box.json"));
   const LightingScene scene(description);
