@@ -20,11 +20,10 @@ The score of a stage is killed / (killed + holes); the target is 95 % (docs/inst
 The work happens in a copy of the tree (default /tmp/rt-mutation), never in this one:
 
   tools/mutation.py --list [--stages 1 2]          the mutants, without building anything
-  tools/mutation.py [--stages 1 2] [--sample 80]   build, run, print the table and the holes
+  tools/mutation.py [--stages 1 2] [--sample 60]   build, run, print the table and the holes
       [--seed 1] [--work DIR] [--write-doc] [--check]
   tools/mutation.py --stages 1 --only sphere_       every mutant whose name contains the text
-
-  tools/mutation.py --stages 2 --recheck          the holes of stage 2's last run, run again
+  tools/mutation.py --stages 2 --recheck           the holes of stage 2's last run, run again
 
 --sample N tests a fixed-seed sample of N mutants per stage (all of them when a stage has fewer);
 --write-doc rewrites the measured stages' lines of the table in docs/instructors.md; --check exits
@@ -372,7 +371,7 @@ def table_rows(rows):
         score = f"{100.0 * r['killed'] / scored:.1f} %" if scored else "–"
         sampled = f"{r['tested']} of {r['all']}" if r["tested"] < r["all"] else str(r["all"])
         out[stage] = (f"| {stage} | {sampled} | {r['killed']} | {r['equivalent']} | {r['holes']} | "
-                      f"{r['not compiling']} | {score} | {r['measured']} |")
+                      f"{r['not compiling']} | {score} | {r.get('measured', '?')} |")
     return out
 
 
