@@ -320,6 +320,12 @@ class Workspace:
     def build_stage(self, stage):
         return run(["cmake", "--build", str(self.build), "--target", *self.targets(stage)], self.src, 1800)
 
+    def check_baseline(self, stage):
+        """Builds the stage's tests on the unmutated tree and stops the run unless they all pass."""
+        code, out = self.build_stage(stage)
+        if code != 0 or self.test_stage(stage):
+            sys.exit(f"mutation.py: stage {stage}'s tests do not pass on the unmutated tree; fix that first")
+
     def test_stage(self, stage):
         """None when every test passes, else the first failing test (or 'timeout')."""
         code, out = run(["ctest", "--test-dir", str(self.build), "-L", f"^stage{stage}$", "-j2", "--stop-on-failure",
@@ -454,22 +460,25 @@ def when_measured():
     return f"{time.strftime('%Y-%m-%d')}, {commit}{' + changes' if dirty else ''}"
 
 
+def key_of(record):
+    """How a stored result names its mutant: file, line text and description, as the equivalent list does."""
+    return record["file"], record["code"], record["description"]
+
+
 def recheck_holes(args, results, everything, equivalent):
     """Runs the holes of the last run of args.stages again, with today's tests, and records the
     outcome (a mutant is found again by its file, line text and description)."""
     today = {(m.file, m.code, m.description): m for m in everything}
     holes = [r for r in results["mutants"] if r["stage"] in args.stages and r["status"] == "survived" and
-             (r["file"], r["code"], r["description"]) not in equivalent]
-    missing = [r for r in holes if (r["file"], r["code"], r["description"]) not in today]
+             key_of(r) not in equivalent]
+    missing = [r for r in holes if key_of(r) not in today]
     if missing:
         sys.exit("mutation.py: the tool no longer makes " + "; ".join(
             f"{r['file']}: {r['description']} in `{r['code']}`" for r in missing) + ": measure the stage again")
     workspace = Workspace(args.work, args.test_timeout)
     for s in sorted({r["stage"] for r in holes}):
-        code, out = workspace.build_stage(s)
-        if code != 0 or workspace.test_stage(s):
-            sys.exit(f"mutation.py: stage {s}'s tests do not pass on the unmutated tree; fix that first")
-    mutants = [today[(r["file"], r["code"], r["description"])] for r in holes]
+        workspace.check_baseline(s)
+    mutants = [today[key_of(r)] for r in holes]
     outcomes = measure(workspace, mutants, lambda text: print(text, flush=True))
     for index, r in enumerate(holes):
         r["status"], r["killed_by"] = outcomes[index]
@@ -486,9 +495,7 @@ def measure_stages(args, per_stage, chosen):
     results = {"stages": {}, "mutants": []}
     for s in args.stages:
         print(f"stage {s}: baseline build and tests", flush=True)
-        code, out = workspace.build_stage(s)
-        if code != 0 or workspace.test_stage(s):
-            sys.exit(f"mutation.py: stage {s}'s tests do not pass on the unmutated tree; fix that first")
+        workspace.check_baseline(s)
         outcomes = measure(workspace, chosen[s], lambda text: print(text, flush=True))
         results["stages"][str(s)] = {"all": len(per_stage[s]), "tested": len(chosen[s]), "measured": when_measured()}
         for index, (status, detail) in sorted(outcomes.items()):
@@ -508,7 +515,7 @@ def summarize(results, equivalent, stale, args):
     for r in results["mutants"]:
         status = r["status"]
         if status == "survived":
-            status = "equivalent" if (r["file"], r["code"], r["description"]) in equivalent else "hole"
+            status = "equivalent" if key_of(r) in equivalent else "hole"
         rows[r["stage"]][{"hole": "holes"}.get(status, status)] += 1
         if status == "hole":
             holes.append(r)
