@@ -133,13 +133,18 @@ TEST(Whitted, TheDepthLimitCountsRefractedRaysToo) {
   EXPECT_NEAR(whitted_radiance(scene, ray, depth(3)).r, 0.96f * 0.96f, 1e-5f);
 }
 
+// One glass surface, an 18 x 18 square in the plane y = 0, white all round: a ray refracted into it
+// meets nothing more.
+SceneDescription glass_surface() {
+  return scene_of({glass(1.5f)}, {Shape{"glass", Quad{{Vec3(-9, 0, -9), Vec3(-9, 0, 9), Vec3(9, 0, 9), Vec3(9, 0, -9)}}, 0}},
+                  Color(1.0f));
+}
+
 TEST(Whitted, BranchPruningWeighsTheRefractedBranchByTheLightItPasses) {
-  // One glass surface seen at 87 degrees from its normal, white all round: it reflects R > 1/2 and
-  // passes 1 - R into the glass, where the ray meets nothing more. Unpruned, R + (1 - R) = 1; with a
+  // The glass surface seen at 87 degrees from its normal: it reflects R > 1/2 and passes 1 - R into
+  // the glass. Unpruned, R + (1 - R) = 1; with a
   // threshold of 1/2 the refracted branch, of weight 1 - R, is cut off and only R is left.
-  const WhittedScene scene(scene_of({glass(1.5f)},
-                                    {Shape{"glass", Quad{{Vec3(-9, 0, -9), Vec3(-9, 0, 9), Vec3(9, 0, 9), Vec3(9, 0, -9)}}, 0}},
-                                    Color(1.0f)));
+  const WhittedScene scene(glass_surface());
   const float cos_i = 0.05f;
   const Ray ray{Vec3(-15, 0.5f, 0), Vec3(std::sqrt(1.0f - cos_i * cos_i), -cos_i, 0)};  // meets it at x = -5
   const float r = fresnel_dielectric(cos_i, 1.0f, 1.5f);
@@ -151,9 +156,7 @@ TEST(Whitted, BranchPruningWeighsTheRefractedBranchByTheLightItPasses) {
 TEST(Whitted, BranchPruningWeighsTheReflectedBranchByTheLightItReflects) {
   // The same surface seen face-on: it reflects R = 0.04 and passes 0.96. With a threshold of 0.1
   // the reflected branch, of weight R, is cut off and only 1 - R is left.
-  const WhittedScene scene(scene_of({glass(1.5f)},
-                                    {Shape{"glass", Quad{{Vec3(-9, 0, -9), Vec3(-9, 0, 9), Vec3(9, 0, 9), Vec3(9, 0, -9)}}, 0}},
-                                    Color(1.0f)));
+  const WhittedScene scene(glass_surface());
   const Ray ray{Vec3(0.5f, 2, 0.25f), Vec3(0, -1, 0)};
   EXPECT_NEAR(whitted_radiance(scene, ray, depth(5, FresnelModel::exact, 0.0f)).r, 1.0f, 1e-5f);
   EXPECT_NEAR(whitted_radiance(scene, ray, depth(5, FresnelModel::exact, 0.1f)).r, 0.96f, 1e-5f);

@@ -41,10 +41,11 @@ struct Estimate {
   double mean, standard_error;
 };
 
-// The radiance along one fixed ray to the floor point (0, 0, 0), by default from a low position so
-// it passes under every emitter: `samples` independent estimates, their mean and standard error.
-Estimate estimate_at_origin(const LightingScene& scene, DirectEstimator estimator, int samples,
-                            Vec3 origin = Vec3(3.0f, 0.2f, 0.0f), Vec3 target = Vec3(0.0f)) {
+// The radiance along one fixed ray to the floor point `target`, by default the origin seen from a
+// low position so that the ray passes under every emitter: `samples` independent estimates, their
+// mean and standard error.
+Estimate estimate_at(const LightingScene& scene, DirectEstimator estimator, int samples,
+                     Vec3 origin = Vec3(3.0f, 0.2f, 0.0f), Vec3 target = Vec3(0.0f)) {
   constexpr std::uint64_t seed = 1;
   const Ray ray{origin, glm::normalize(target - origin)};
   DirectOptions options;
@@ -62,7 +63,7 @@ Estimate estimate_at_origin(const LightingScene& scene, DirectEstimator estimato
 
 void expect_every_estimator_finds(const LightingScene& scene, double exact, int samples) {
   for (const DirectEstimator e : kEstimators) {
-    const Estimate est = estimate_at_origin(scene, e, samples);
+    const Estimate est = estimate_at(scene, e, samples);
     EXPECT_NEAR(est.mean, exact, 4.0 * est.standard_error + 1e-5 * exact) << name(e);
     EXPECT_LT(est.standard_error, 0.02 * exact) << name(e) << ": too noisy to mean anything";
   }
@@ -86,7 +87,7 @@ TEST(DirectClosedForm, PointLightInverseSquareAndCosineLaw) {
                                                 {"type": "point", "position": )" + at(0, c, s) + R"(, "intensity": [4, 4, 4]}])");
     const double exact = kAlbedo * 2.5 / kPi;
     for (const DirectEstimator e : kEstimators) {
-      const Estimate est = estimate_at_origin(scene, e, 16, p + Vec3(3.0f, 0.2f, 0.0f), p);
+      const Estimate est = estimate_at(scene, e, 16, p + Vec3(3.0f, 0.2f, 0.0f), p);
       EXPECT_NEAR(est.mean, exact, 1e-5 * exact) << name(e) << " at " << p.x << ", " << p.z;
       EXPECT_LT(est.standard_error, 1e-6) << name(e);
     }
@@ -119,7 +120,7 @@ TEST(DirectClosedForm, OneSidedEmitterLightsNothingBehindIt) {
   const LightingScene scene = floor_scene(R"({"albedo": [0.5, 0.5, 0.5]})",
                                           R"({"type": "quad", "material": "light",
       "vertices": [[-0.5, 1, -0.5], [-0.5, 1, 0.5], [0.5, 1, 0.5], [0.5, 1, -0.5]]})");
-  for (const DirectEstimator e : kEstimators) EXPECT_EQ(estimate_at_origin(scene, e, 1000).mean, 0.0) << name(e);
+  for (const DirectEstimator e : kEstimators) EXPECT_EQ(estimate_at(scene, e, 1000).mean, 0.0) << name(e);
 }
 
 TEST(DirectEstimators, AgreeOnGlossySurfaces) {
@@ -130,7 +131,7 @@ TEST(DirectEstimators, AgreeOnGlossySurfaces) {
       "vertices": [[-2.5, 1.5, -0.5], [-1.5, 1.5, -0.5], [-1.5, 1.5, 0.5], [-2.5, 1.5, 0.5]]})");
     std::vector<Estimate> estimates;
     // Seen from above, so the mirror direction of the view points into the light.
-    for (const DirectEstimator e : kEstimators) estimates.push_back(estimate_at_origin(scene, e, 60000, kAbove));
+    for (const DirectEstimator e : kEstimators) estimates.push_back(estimate_at(scene, e, 60000, kAbove));
     EXPECT_GT(estimates.back().mean, 0.05) << floor;  // the highlight is in view
     for (size_t i = 0; i < estimates.size(); ++i)
       for (size_t j = i + 1; j < estimates.size(); ++j) {
@@ -145,15 +146,15 @@ TEST(DirectEstimators, LightSamplingWinsForSmallLightsBrdfSamplingForSharpLobes)
   // A small light over a diffuse floor: light sampling has far less variance.
   const LightingScene small = floor_scene(R"({"albedo": [0.5, 0.5, 0.5]})", R"({"type": "disk", "material": "light",
       "center": [0, 1, 0], "normal": [0, -1, 0], "radius": 0.05})");
-  const Estimate by_light = estimate_at_origin(small, DirectEstimator::light, 4000);
-  const Estimate by_cosine = estimate_at_origin(small, DirectEstimator::cosine_hemisphere, 4000);
+  const Estimate by_light = estimate_at(small, DirectEstimator::light, 4000);
+  const Estimate by_cosine = estimate_at(small, DirectEstimator::cosine_hemisphere, 4000);
   EXPECT_LT(by_light.standard_error * 10.0, by_cosine.standard_error);
   // A large light seen in a sharp glossy lobe: BRDF sampling has less variance.
   const LightingScene glossy = floor_scene(R"({"type": "phong", "albedo": [0, 0, 0], "specular": [0.9, 0.9, 0.9], "shininess": 2000})",
                                            R"({"type": "quad", "material": "light",
       "vertices": [[-20, 3, -10], [0, 3, -10], [0, 3, 10], [-20, 3, 10]]})");
-  const Estimate glossy_light = estimate_at_origin(glossy, DirectEstimator::light, 4000, kAbove);
-  const Estimate glossy_brdf = estimate_at_origin(glossy, DirectEstimator::brdf, 4000, kAbove);
+  const Estimate glossy_light = estimate_at(glossy, DirectEstimator::light, 4000, kAbove);
+  const Estimate glossy_brdf = estimate_at(glossy, DirectEstimator::brdf, 4000, kAbove);
   EXPECT_LT(glossy_brdf.standard_error * 3.0, glossy_light.standard_error);
 }
 
@@ -163,7 +164,7 @@ TEST(DirectDelta, EveryEstimatorSeesALightInAMirror) {
                                           R"({"type": "disk", "material": "light", "center": [-3, 0.2, 0],
       "normal": [1, 0, 0], "radius": 0.5})");
   for (const DirectEstimator e : kEstimators) {
-    const Estimate est = estimate_at_origin(scene, e, 8);
+    const Estimate est = estimate_at(scene, e, 8);
     EXPECT_NEAR(est.mean, 3.2, 1e-5) << name(e);
   }
 }

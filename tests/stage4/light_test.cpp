@@ -182,11 +182,11 @@ TEST(EmitterSampling, ConeSamplesLieOnTheSphereFacingTheShadingPoint) {
   // sphere (the nearer root), so it lies on the sphere, on the cap that x sees. Only the
   // direction enters the irradiance, so the tests above cannot see a wrong point; a shadow ray
   // aimed at it would.
+  const Vec3 center(0, 3, 0);
+  const float radius = 1.0f;
+  const AreaEmitter e{SphereEmitter{center, radius, SphereSampling::cone}, Color(1)};
   Rng rng(29, 0, 0);
   for (const Vec3 x : {Vec3(0.0f), Vec3(0.3f, 0.0f, -0.2f), Vec3(4.0f, -1.0f, 2.0f)}) {
-    const Vec3 center(0, 3, 0);
-    const float radius = 1.0f;
-    const AreaEmitter e{SphereEmitter{center, radius, SphereSampling::cone}, Color(1)};
     for (int k = 0; k < 1000; ++k) {
       const EmitterSample s = e.sample(x, rng.uniform2());
       ASSERT_NEAR(glm::length(s.point - center), radius, 1e-4f) << "sample " << k << " is not on the sphere";
