@@ -28,7 +28,7 @@ struct Setup {
   const char* file;
 };
 
-Image render(const LightingScene& scene, const PinholeCamera& camera, DirectEstimator estimator, int spp,
+Image render(const LightingScene& scene, const Camera& camera, DirectEstimator estimator, int spp,
              std::uint64_t seed, double* seconds = nullptr) {
   RenderSettings settings;
   settings.width = kWidth;
@@ -48,7 +48,7 @@ Image render(const LightingScene& scene, const PinholeCamera& camera, DirectEsti
 // The reference: light sampling at kReferenceSpp on its own seed. Its RMSE is about a sixth of
 // the best 256-spp render's (errors add in quadrature, so it inflates that one by under 2%); a
 // BRDF-sampled half would have made it noisier, not better, under the small light.
-Image reference(const LightingScene& scene, const PinholeCamera& camera) {
+Image reference(const LightingScene& scene, const Camera& camera) {
   return render(scene, camera, DirectEstimator::light, kReferenceSpp, 1000);
 }
 
@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
     LightingOptions by_solid_angle;
     by_solid_angle.rectangle_sampling = RectangleSampling::solid_angle;
     const LightingScene solid_angle_scene(description, by_solid_angle);
-    const PinholeCamera camera(description.camera, kWidth, kHeight);
+    const Camera camera(description.camera, kWidth, kHeight);
     const Image truth = reference(scene, camera);
     std::printf("%s (reference: light sampling, %d spp)\n", setup.name, kReferenceSpp);
     struct Series {

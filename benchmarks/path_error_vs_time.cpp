@@ -40,7 +40,7 @@ struct Point {
 struct Cornell {
   SceneDescription description = load_scene(std::string(RT_SOURCE_DIR) + "/assets/scenes/cornell-box.json");
   LightingScene scene{description};
-  PinholeCamera camera{description.camera, 256, 256};
+  Camera camera{description.camera, 256, 256};
   Image reference = read_pfm(std::string(RT_SOURCE_DIR) + "/assets/references/cornell-box-256.pfm");
 };
 

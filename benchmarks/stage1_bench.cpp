@@ -13,7 +13,7 @@ namespace rt {
 namespace {
 
 void BM_GenerateCameraRays(benchmark::State& state) {
-  const PinholeCamera camera(CameraSpec{Vec3(0, 1, -5), Vec3(0), Vec3(0, 1, 0), 40.0f}, 640, 480);
+  const Camera camera(CameraSpec{Vec3(0, 1, -5), Vec3(0), Vec3(0, 1, 0), 40.0f}, 640, 480);
   Rng rng(1, 0, 0);
   for (auto _ : state) {
     const Vec2 film(rng.uniform() * 640.0f, rng.uniform() * 480.0f);
@@ -62,7 +62,7 @@ void BM_RenderSpheresScene(benchmark::State& state) {
   settings.width = 160;
   settings.height = 100;
   settings.spp = 1;
-  const PinholeCamera camera(description.camera, settings.width, settings.height);
+  const Camera camera(description.camera, settings.width, settings.height);
   for (auto _ : state)
     benchmark::DoNotOptimize(render_image(camera, settings, 1, [&](const Ray& ray, Rng&) {
       return cast_ray(scene, ray);

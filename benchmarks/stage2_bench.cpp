@@ -101,7 +101,7 @@ void render_scene(benchmark::State& state, const char* file, int width, int heig
   settings.spp = 1;
   WhittedOptions options;
   options.max_depth = settings.max_depth;
-  const PinholeCamera camera(description.camera, width, height);
+  const Camera camera(description.camera, width, height);
   for (auto _ : state)
     benchmark::DoNotOptimize(render_image(camera, settings, 1, [&](const Ray& ray, Rng&) {
       return whitted_radiance(scene, ray, options);

@@ -27,7 +27,7 @@ Image render_whitted(const SceneDescription& d, const WhittedOptions& options, T
   RenderSettings settings = d.render;
   settings.spp = 1;
   settings.pixel_center_only = true;
-  return render_image(PinholeCamera(d.camera, settings.width, settings.height), settings, 0,
+  return render_image(Camera(d.camera, settings.width, settings.height), settings, 0,
                       [&](const Ray& ray, Rng&) { return whitted_radiance(scene, ray, options); });
 }
 

@@ -4,6 +4,7 @@ find_package(glm REQUIRED)                 # libglm-dev
 find_package(nlohmann_json 3 REQUIRED)     # nlohmann-json3-dev
 find_package(CLI11 2 REQUIRED)             # libcli11-dev
 find_package(tinyobjloader REQUIRED)       # libtinyobjloader-dev (OBJ meshes, from stage 2 on)
+find_package(tinyexr REQUIRED)             # libtinyexr-dev (OpenEXR output)
 
 # libpcg-cpp-dev: header-only, no CMake package.
 find_path(PCG_INCLUDE_DIR pcg_random.hpp REQUIRED)

@@ -14,6 +14,7 @@
 #include <exception>
 #include <functional>
 #include <limits>
+#include <map>
 #include <set>
 #include <utility>
 #include <vector>
@@ -27,6 +28,9 @@ RenderSettings CommonOptions::settings_for(const SceneDescription& description) 
   if (height) s.height = *height;
   if (seed) s.seed = *seed;
   if (max_depth) s.max_depth = *max_depth;
+  if (filter)
+    for (const auto& [type, name] : kPixelFilterNames)
+      if (*filter == name) s.filter = type;
   if (sample_range) {
     const SampleRangeFlag range = parse_sample_range(*sample_range);
     s.first_sample = range.first;
@@ -189,6 +193,31 @@ CLI::Validator finite_range(double lo, double hi) {
       "FLOAT in [" + CLI::detail::to_string(lo) + " - " + CLI::detail::to_string(hi) + "]");
 }
 
+void add_image_encoding_flags(CLI::App& app, ImageEncoding& encoding) {
+  DisplayTransform& display = encoding.display;
+  app.add_option_function<double>(
+         "--exposure", [&display](double stops) { display.exposure_stops = float(stops); },
+         "PNG only: exposure in stops, each doubling the radiance before the tone curve (default 0)")
+      ->check(finite_range(-64.0, 64.0));
+  std::map<std::string, ToneCurve> tones;
+  for (const auto& [tone, name] : kToneCurveNames) tones[name] = tone;
+  app.add_option("--tone", display.tone, "PNG only: tone curve clamp (default), reinhard or aces")
+      ->transform(CLI::CheckedTransformer(tones));
+  app.add_option_function<double>(
+         "--white", [&display](double white) { display.white = float(white); },
+         "PNG only: the luminance Reinhard's curve maps to 1 (default 4)")
+      ->check(finite_range(1e-3, 1e6));
+  app.add_option_function<double>(
+         "--gamma",
+         [&display](double gamma) {
+           display.transfer = TransferCurve::gamma;
+           display.gamma = float(gamma);
+         },
+         "PNG only: encode with the power 1/gamma instead of the sRGB curve")
+      ->check(finite_range(0.2, 5.0));
+  app.add_flag("--exr-half", encoding.exr_half, "EXR only: 16-bit half floats instead of 32-bit floats");
+}
+
 void add_max_depth_flag(CLI::App& app, CommonOptions& options) {
   app.add_option("--max-depth", options.max_depth,
                  "Recursion depth limit: bounces followed before a path stops (default: the scene's)")
@@ -202,7 +231,7 @@ int run_stage_program(int argc, char** argv, const std::string& program, const s
   app.add_option("--scene", options.scene, "Scene file (JSON, see docs/scene-format.md)")
       ->required();
   app.add_option("--out", options.out,
-                 "Output; the ending picks the format: .png or .pfm (the image), or .json (a sample batch "
+                 "Output; the ending picks the format: .png, .pfm or .exr (the image), or .json (a sample batch "
                  "for merge: the undivided sums and counts, see docs/scale-out.md)")
       ->required();
   CLI::Option* spp = app.add_option("--spp", options.spp, "Samples per pixel (default: the scene's)")
@@ -225,8 +254,17 @@ int run_stage_program(int argc, char** argv, const std::string& program, const s
   app.add_option("--crop", options.crop, "Render only the pixels [x0, x1) x [y0, y1) (x0:x1,y0:y1), e.g. one tile")
       ->check(text_check([](const std::string& t) { return crop_problem(t, kMaxImageSide, kMaxImageSide); },
                          "x0:x1,y0:y1"));
-  const std::set<std::string> common_flags = {"--help", "--scene", "--out", "--spp", "--width", "--height",
-                                              "--threads", "--seed", "--sample-range", "--crop", "--max-depth"};
+  std::vector<std::string> filter_names;
+  for (const auto& entry : kPixelFilterNames) filter_names.push_back(entry.second);
+  app.add_option("--filter", options.filter,
+                 "Pixel reconstruction filter: box, tent, gaussian, mitchell or blackman-harris (default: the "
+                 "scene's, or box)")
+      ->check(CLI::IsMember(filter_names));
+  add_image_encoding_flags(app, options.encoding);
+  const std::set<std::string> common_flags = {"--help",      "--scene", "--out",     "--spp",      "--width",
+                                              "--height",    "--threads", "--seed",  "--sample-range", "--crop",
+                                              "--max-depth", "--filter", "--exposure", "--tone",    "--white",
+                                              "--gamma",     "--exr-half"};
   add_stage_flags(app);
   const std::vector<std::pair<CLI::Option*, std::string>> stage_flags = stage_flag_defaults(app, common_flags);
 

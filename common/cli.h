@@ -3,6 +3,7 @@
 // failure is one line on stderr.
 #pragma once
 
+#include "common/image_io.h"
 #include "common/memory_limit.h"
 #include "common/scene.h"
 
@@ -31,6 +32,8 @@ struct CommonOptions {
   // Scale-out (docs/scale-out.md): "a:b" renders samples [a, b) of each pixel; "x0:x1,y0:y1" only
   // the pixels [x0, x1) x [y0, y1).
   std::optional<std::string> sample_range, crop;
+  std::optional<std::string> filter;  // --filter: a pixel filter's name (kPixelFilterNames)
+  ImageEncoding encoding;  // --exposure --tone --white --gamma --exr-half: how an image file encodes
   // The stage's own flags that shape the image, "--name=value ..." with defaults filled in, set by
   // run_stage_program: what a sample batch records so that only batches of one render merge.
   std::string image_flags;
@@ -55,6 +58,10 @@ CLI::Validator decimal(std::uint64_t lo, std::uint64_t hi);
 // A CLI11 check for a floating-point flag: a finite number in [lo, hi] (CLI::Range lets NaN
 // through, since every comparison with NaN is false).
 CLI::Validator finite_range(double lo, double hi);
+
+// The flags of how an image file encodes (common/image_io.h, common/display_transform.h): --exposure,
+// --tone, --white and --gamma for a PNG, --exr-half for an EXR. Every stage program and merge.
+void add_image_encoding_flags(CLI::App& app, ImageEncoding& encoding);
 
 // --max-depth, for the stage programs that follow rays recursively (stage 2 on).
 void add_max_depth_flag(CLI::App& app, CommonOptions& options);

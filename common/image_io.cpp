@@ -5,9 +5,11 @@
 #include "common/file_io.h"
 
 #include <stb_image_write.h>
+#include <tinyexr.h>
 
 #include <bit>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <sstream>
 #include <stdexcept>
@@ -38,23 +40,24 @@ ImageFormat image_format_for(const fs::path& path) {
   const std::string ext = path.extension().string();
   if (ext == ".png") return ImageFormat::png;
   if (ext == ".pfm") return ImageFormat::pfm;
+  if (ext == ".exr") return ImageFormat::exr;
   throw UsageError("output '" + path.string() + "': unknown image format '" + ext +
-                   "' (use .png or .pfm)");
+                   "' (use .png, .pfm or .exr)");
 }
 
-void write_image(const fs::path& path, const Image& image) {
-  const ImageFormat format = image_format_for(path);
-  write_file_atomically(path, format == ImageFormat::png ? encode_png(image) : encode_pfm(image));
+void write_image(const fs::path& path, const Image& image, const ImageEncoding& encoding) {
+  switch (image_format_for(path)) {
+    case ImageFormat::png: write_file_atomically(path, encode_png(image, encoding.display)); break;
+    case ImageFormat::pfm: write_file_atomically(path, encode_pfm(image)); break;
+    case ImageFormat::exr: write_file_atomically(path, encode_exr(image, encoding.exr_half)); break;
+  }
 }
 
-std::vector<char> encode_png(const Image& image) {
+std::vector<char> encode_png(const Image& image, const DisplayTransform& display) {
   std::vector<std::uint8_t> rgb;
   rgb.reserve(image.pixel_count() * 3);
-  for (const Color& c : image.pixels()) {
-    rgb.push_back(srgb_to_byte(c.r));
-    rgb.push_back(srgb_to_byte(c.g));
-    rgb.push_back(srgb_to_byte(c.b));
-  }
+  for (const Color& c : image.pixels())
+    for (const std::uint8_t code : display_bytes(c, display)) rgb.push_back(code);
   std::vector<char> bytes;
   auto append = [](void* context, void* data, int size) {
     auto* out = static_cast<std::vector<char>*>(context);
@@ -73,6 +76,74 @@ std::vector<char> encode_pfm(const Image& image) {
 std::vector<char> encode_pfm_grey(int width, int height, const std::vector<float>& values) {
   if (values.size() != size_t(width) * size_t(height)) throw std::invalid_argument("encode_pfm_grey: wrong size");
   return encode_pfm_rows(width, height, 1, values.data());
+}
+
+namespace {
+
+// tinyexr reports errors in a string it allocated; this takes it over.
+std::string take_exr_error(const char* error) {
+  std::string text = error ? error : "unknown error";
+  if (error) FreeEXRErrorMessage(error);
+  return text;
+}
+
+}  // namespace
+
+std::vector<char> encode_exr(const Image& image, bool half) {
+  // OpenEXR stores channels as planes; readers expect their names in alphabetical order (B, G, R).
+  const size_t n = image.pixel_count();
+  std::vector<float> planes[3];
+  for (auto& plane : planes) plane.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Color& c = image.pixels()[i];
+    planes[0][i] = c.b, planes[1][i] = c.g, planes[2][i] = c.r;
+  }
+  unsigned char* plane_pointers[3] = {reinterpret_cast<unsigned char*>(planes[0].data()),
+                                      reinterpret_cast<unsigned char*>(planes[1].data()),
+                                      reinterpret_cast<unsigned char*>(planes[2].data())};
+  EXRImage exr_image;
+  InitEXRImage(&exr_image);
+  exr_image.images = plane_pointers;
+  exr_image.width = image.width();
+  exr_image.height = image.height();
+  exr_image.num_channels = 3;
+
+  EXRChannelInfo channels[3] = {};
+  int pixel_types[3], requested_types[3];
+  for (int i = 0; i < 3; ++i) {
+    channels[i].name[0] = "BGR"[i];
+    pixel_types[i] = TINYEXR_PIXELTYPE_FLOAT;
+    requested_types[i] = half ? TINYEXR_PIXELTYPE_HALF : TINYEXR_PIXELTYPE_FLOAT;
+  }
+  EXRHeader header;
+  InitEXRHeader(&header);
+  header.num_channels = 3;
+  header.channels = channels;
+  header.pixel_types = pixel_types;
+  header.requested_pixel_types = requested_types;
+  header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
+
+  unsigned char* memory = nullptr;
+  const char* error = nullptr;
+  const size_t size = SaveEXRImageToMemory(&exr_image, &header, &memory, &error);
+  if (size == 0) throw InputError("EXR encoding failed: " + take_exr_error(error));
+  std::vector<char> bytes(reinterpret_cast<char*>(memory), reinterpret_cast<char*>(memory) + size);
+  std::free(memory);
+  return bytes;
+}
+
+Image decode_exr(const std::string& bytes, const std::string& name) {
+  float* rgba = nullptr;
+  int width = 0, height = 0;
+  const char* error = nullptr;
+  if (LoadEXRFromMemory(&rgba, &width, &height, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(),
+                        &error) != TINYEXR_SUCCESS)
+    throw InputError(name + ": not a readable OpenEXR image (" + take_exr_error(error) + ")");
+  Image image(width, height);
+  for (size_t i = 0; i < image.pixel_count(); ++i)
+    image.pixels()[i] = Color(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]);
+  std::free(rgba);
+  return image;
 }
 
 Image read_pfm(const fs::path& path) {

@@ -1,10 +1,15 @@
 // Reading and writing images. The file ending picks the format (docs/design.md):
-//   .png  sRGB-encoded 8-bit, clamped to [0, 1] (for looking at);
+//   .png  8-bit, through the display transform (common/display_transform.h: exposure, tone curve,
+//         sRGB or gamma; by default clamped to [0, 1] and sRGB-encoded), for looking at;
 //   .pfm  linear 32-bit float RGB per the PFM spec: little-endian (scale -1), bottom row first
-//         (for measuring).
+//         (for measuring);
+//   .exr  linear OpenEXR (through Debian's tinyexr), 32-bit float or 16-bit half channels R, G, B,
+//         ZIP-compressed, for HDR viewers and compositing.
+// Linear formats are never tone-mapped: they hold the renderer's radiance as it is.
 // Writers are atomic (common/file_io.h); every failure throws InputError naming the file.
 #pragma once
 
+#include "common/display_transform.h"
 #include "common/image.h"
 
 #include <cstdint>
@@ -14,14 +19,23 @@
 
 namespace rt {
 
-enum class ImageFormat { png, pfm };
+enum class ImageFormat { png, pfm, exr };
 
 // The format named by the file ending; throws UsageError for any other ending.
 ImageFormat image_format_for(const std::filesystem::path& path);
 
-void write_image(const std::filesystem::path& path, const Image& image);
+// How the formats that need a choice encode: a PNG's display transform, an EXR's precision.
+struct ImageEncoding {
+  DisplayTransform display;
+  bool exr_half = false;  // 16-bit half floats (3 significant decimal digits, up to 65504)
+};
 
-std::vector<char> encode_png(const Image& image);
+void write_image(const std::filesystem::path& path, const Image& image, const ImageEncoding& encoding = {});
+
+std::vector<char> encode_png(const Image& image, const DisplayTransform& display = {});
+std::vector<char> encode_exr(const Image& image, bool half);
+// Reads an RGB (or RGBA, alpha dropped) OpenEXR image from its bytes; `name` names it in messages.
+Image decode_exr(const std::string& bytes, const std::string& name);
 std::vector<char> encode_pfm(const Image& image);
 // One channel ("Pf"), `values` row by row from the top: a sample-count image (common/sample_batch.h).
 std::vector<char> encode_pfm_grey(int width, int height, const std::vector<float>& values);

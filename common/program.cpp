@@ -37,7 +37,8 @@ SampleBatch batch_of(const char* program, const CommonOptions& options, const st
   batch.identity = {program,
                     scene,
                     scene_fingerprint(scene, description),
-                    options.image_flags + " --max-depth=" + std::to_string(s.max_depth),
+                    options.image_flags + " --max-depth=" + std::to_string(s.max_depth) +
+                        " --filter=" + pixel_filter_name(s.filter),
                     s.width,
                     s.height,
                     s.seed};
@@ -84,7 +85,7 @@ void write_render(const char* program, const CommonOptions& options, const std::
   } else {
     Image image = sums.mean();
     if (meaning == PixelMeaning::depth && image_format_for(options.out) == ImageFormat::png) scale_depth_for_png(image);
-    write_image(options.out, image);
+    write_image(options.out, image, options.encoding);
   }
   if (interrupt_requested()) {
     std::printf("%s: interrupted by %s: wrote %s with %s of %s samples (%.1f%%), %s\n", program, signal_name,

@@ -17,10 +17,26 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
 namespace rt {
+
+// The pixel reconstruction filters of stage 1 (01-ray-casting/pixel_filter.h has their shapes).
+enum class PixelFilterType { box, tent, gaussian, mitchell, blackman_harris };
+inline constexpr std::array<std::pair<PixelFilterType, const char*>, 5> kPixelFilterNames{{
+    {PixelFilterType::box, "box"},
+    {PixelFilterType::tent, "tent"},
+    {PixelFilterType::gaussian, "gaussian"},
+    {PixelFilterType::mitchell, "mitchell"},
+    {PixelFilterType::blackman_harris, "blackman-harris"},
+}};
+inline const char* pixel_filter_name(PixelFilterType type) {
+  for (const auto& [t, name] : kPixelFilterNames)
+    if (t == type) return name;
+  return "?";
+}
 
 // What the command line may override (common/cli.h); the scene file gives the defaults.
 struct RenderSettings {
@@ -30,6 +46,7 @@ struct RenderSettings {
   std::uint64_t seed = 0;
   int max_depth = 5;               // recursion / path depth limit for the later stages
   bool pixel_center_only = false;  // one ray through each pixel centre instead of area samples
+  PixelFilterType filter = PixelFilterType::box;  // how samples spread over and around a pixel
 
   // Scale-out (docs/scale-out.md): a run takes samples [first_sample, first_sample + spp) of each
   // pixel, so batches rendered apart add up to one render; and only the pixels of `crop` when set.

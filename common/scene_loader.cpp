@@ -6,6 +6,7 @@
 #include "common/obj_loader.h"
 #include "common/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -15,7 +16,7 @@ namespace rt {
 namespace {
 
 RenderSettings parse_render(const JsonNode& n) {
-  n.expect_object({"width", "height", "spp", "seed", "max_depth", "pixel_center_only"});
+  n.expect_object({"width", "height", "spp", "seed", "max_depth", "pixel_center_only", "filter"});
   RenderSettings r;
   if (n.has("width")) r.width = int(n["width"].as_int(1, kMaxImageSide));
   if (n.has("height")) r.height = int(n["height"].as_int(1, kMaxImageSide));
@@ -23,11 +24,19 @@ RenderSettings parse_render(const JsonNode& n) {
   if (n.has("seed")) r.seed = n["seed"].as_integer<std::uint64_t>(0, std::numeric_limits<std::uint64_t>::max());
   if (n.has("max_depth")) r.max_depth = int(n["max_depth"].as_int(0, 1000));
   if (n.has("pixel_center_only")) r.pixel_center_only = n["pixel_center_only"].as_bool();
+  if (n.has("filter")) {
+    const std::string name = n["filter"].as_string();
+    const auto* known = std::find_if(kPixelFilterNames.begin(), kPixelFilterNames.end(),
+                                     [&](const auto& entry) { return name == entry.second; });
+    if (known == kPixelFilterNames.end())
+      n["filter"].fail("unknown filter (box, tent, gaussian, mitchell or blackman-harris)");
+    r.filter = known->first;
+  }
   return r;
 }
 
 CameraSpec parse_camera(const JsonNode& n) {
-  n.expect_object({"position", "look_at", "up", "vfov"});
+  n.expect_object({"position", "look_at", "up", "vfov", "aperture_radius", "focus_distance"});
   CameraSpec c;
   c.position = n["position"].as_position();
   c.look_at = n["look_at"].as_position();
@@ -35,6 +44,8 @@ CameraSpec parse_camera(const JsonNode& n) {
   c.vfov_degrees = n["vfov"].as_float();
   if (!(c.vfov_degrees > 0.0f && c.vfov_degrees < 180.0f))
     n["vfov"].fail("vertical field of view must be in (0, 180) degrees");
+  if (n.has("aperture_radius")) c.aperture_radius = n["aperture_radius"].as_float(0.0f, kMaxCoordinate, "aperture radius");
+  if (n.has("focus_distance")) c.focus_distance = n["focus_distance"].as_size("focus distance");
   // In double: the camera's frame is built in float later, from these unit vectors.
   const glm::dvec3 view = glm::dvec3(c.look_at) - glm::dvec3(c.position);
   if (!(glm::length(view) > 0.0)) n["look_at"].fail("look_at equals position");

@@ -6,9 +6,10 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 cmake --preset release >/dev/null
-cmake --build --preset release --target sphere_precision offset_vs_scale triangle_leaks stage2_pictures accel_scaling \
+cmake --build --preset release --target sphere_precision filter_aliasing offset_vs_scale triangle_leaks stage2_pictures accel_scaling \
   direct_error_vs_time path_error_vs_time stage4 stage5
 build/release/bin/sphere_precision docs/charts/stage1-sphere-precision.csv
+build/release/bin/filter_aliasing docs/charts/stage1-filter-aliasing.csv  # about 25 s
 build/release/bin/offset_vs_scale docs/charts/stage2-offset-vs-scale.csv
 build/release/bin/triangle_leaks docs/charts/stage2-triangle-leaks.csv  # the table in docs/stage2.md
 build/release/bin/stage2_pictures "$root"   # docs/images/stage2-acne.png, stage2-cracks.png
@@ -21,6 +22,14 @@ for light in small large; do
     build/release/bin/stage4 --scene "assets/scenes/direct-$light-light.json" --spp 64 --estimator "$estimator" \
       --out "build/stage4-renders/$light-$estimator.png" >/dev/null
   done
+done
+build/release/bin/stage1 --scene assets/scenes/depth-of-field.json --out docs/images/stage1-depth-of-field.png
+mkdir -p build/display  # one HDR render of the Cornell box under each display transform (docs/display.md)
+build/release/bin/stage5 --scene assets/scenes/cornell-box.json --width 256 --height 256 --spp 128 --out build/display/cornell.json
+for view in "default:" "gamma:--gamma 2.2" "bright:--exposure 1.5" "reinhard:--exposure 1.5 --tone reinhard --white 8" \
+  "aces:--exposure 1.5 --tone aces"; do
+  # shellcheck disable=SC2086  # the flags are meant to split
+  build/release/bin/merge --out "docs/images/display-${view%%:*}.png" ${view#*:} build/display/cornell.json >/dev/null
 done
 mkdir -p build/stage5-renders  # the README's first render, beside the reference in docs/images/stage5-cornell-box.png
 build/release/bin/stage5 --scene assets/scenes/cornell-box.json --out build/stage5-renders/cornell-box.pfm

@@ -51,6 +51,28 @@ def sphere_precision(charts):
     plt.close(fig)
 
 
+def filter_aliasing(charts):
+    rows = read_rows(charts / "stage1-filter-aliasing.csv")
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for r in rows:
+        aliasing, passband = float(r["aliasing"]), float(r["passband"])
+        left.plot(aliasing, passband, "o", ms=8)
+        left.annotate(r["filter"], (aliasing, passband), textcoords="offset points", xytext=(6, 4), fontsize=9)
+    left.plot([0.0], [1.0], "k*", ms=10)
+    left.annotate("ideal (sinc)", (0.0, 1.0), textcoords="offset points", xytext=(6, -10), fontsize=9)
+    left.set(xlabel="aliasing: energy folded back from above Nyquist (share of the signal's)",
+             ylabel="sharpness: passband contrast kept", title="Zone plate, 256 x 256, 256 spp")
+    left.grid(True, alpha=0.3)
+    names = [r["filter"] for r in rows]
+    right.bar(names, [float(r["seconds"]) for r in rows], color="#2471a3")
+    right.set(ylabel="render time (s, 2 threads)", title="Cost of sampling the filter by inversion")
+    right.grid(True, axis="y", alpha=0.3)
+    fig.suptitle("Stage 1: pixel reconstruction filters trade aliasing against blur")
+    fig.tight_layout()
+    fig.savefig(charts / "stage1-filter-aliasing.png", dpi=110)
+    plt.close(fig)
+
+
 def offset_vs_scale(charts):
     rows = read_rows(charts / "stage2-offset-vs-scale.csv")
     methods = list(dict.fromkeys(r["method"] for r in rows))
@@ -259,6 +281,7 @@ def cornell_pictures(root, render):
 def main(root):
     charts = pathlib.Path(root) / "docs" / "charts"
     sphere_precision(charts)
+    filter_aliasing(charts)
     offset_vs_scale(charts)
     accel_time_per_ray(charts)
     accel_build_vs_trace(charts)

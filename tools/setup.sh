@@ -10,6 +10,7 @@ packages=(
   libglm-dev                      # vector math
   libstb-dev                      # stb_image_write (PNG)
   libtinyobjloader-dev            # OBJ meshes
+  libtinyexr-dev                  # OpenEXR output
   nlohmann-json3-dev              # scene files
   libcli11-dev                    # command lines
   libpcg-cpp-dev                  # PCG random numbers

@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
         const SceneDescription description = load_scene(options.scene);
         const RenderSettings settings = options.settings_for(description);
         const RayCastingScene scene(description);
-        const PinholeCamera camera(description.camera, settings.width, settings.height);
+        const Camera camera(description.camera, settings.width, settings.height);
         render_and_write("stage1", options, description, settings, camera, meaning_of(view),
                          [&](const Ray& ray, Rng&) { return cast_ray(scene, ray, view); });
       });

@@ -1,12 +1,16 @@
-// Stage 1: the pixel loop every later stage reuses. For each pixel, `spp` samples spread uniformly
-// over the pixel's area (a box filter), each one a camera ray, averaged:
-//   I(x, y) = 1/N sum_k L(ray through (x + u_k, y + v_k)),   (u_k, v_k) uniform in [0, 1)^2.
+// Stage 1: the pixel loop every later stage reuses. For each pixel, `spp` samples spread over and
+// around the pixel by its reconstruction filter (pixel_filter.h; the box: uniformly over the pixel's
+// area), each one a camera ray (through a lens point too, when the camera has an aperture),
+// weighted and averaged:
+//   I(x, y) = 1/N sum_k w_k L(ray through (x, y) + offset_k),
+// offset_k and w_k the filter's sample for (u_k, v_k) uniform in [0, 1)^2 (w = 1 for the box).
 // Every sample draws its numbers from Rng(seed, pixel, k), so the image does not depend on the
 // thread count or the order in which tiles finish, and samples [a, b) rendered in one run are
 // exactly samples [a, b) of any other run: batches rendered apart add up (docs/scale-out.md).
 #pragma once
 
 #include "01-ray-casting/camera_rays.h"
+#include "01-ray-casting/pixel_filter.h"
 #include "common/image.h"
 #include "common/interrupt.h"
 #include "common/parallel.h"
@@ -23,22 +27,28 @@
 namespace rt {
 
 // Task stage1.render.pixel_samples: adds samples [begin, end) of pixel (x, y) to `sum` and returns
-// how many it added. Sample k is the camera ray through (x + u, y + v), (u, v) the first two numbers
-// of SamplerType(seed, pixel index, first_sample + k): the same numbers whichever run, thread or
-// pass takes the sample. `radiance(ray, rng)` returns the radiance arriving along the ray, drawing
+// how many it added. Sample k is the camera ray through (x, y) + the film offset of the filter's
+// sample for (u, v), the first two numbers of SamplerType(seed, pixel index, first_sample + k) (the
+// pixel's centre for settings.pixel_center_only), its radiance times the sample's weight; `filter`
+// is settings.filter's. A camera
+// with an aperture takes its lens point from the next two numbers (generate_lens_ray); a pinhole
+// draws none, so pinhole renders are what they always were. The same numbers whichever run, thread
+// or pass takes the sample. `radiance(ray, rng)` returns the radiance arriving along the ray, drawing
 // any further numbers from the same `rng`. A stop request (common/interrupt.h) ends the loop
 // between two samples: the pixel keeps the samples it finished.
 template <class SamplerType, class RadianceFn>
-int add_pixel_samples(const PinholeCamera& camera, const RenderSettings& settings, int x, int y, int begin, int end,
-                      RadianceFn&& radiance, Color& sum) {
+int add_pixel_samples(const Camera& camera, const PixelFilter& filter, const RenderSettings& settings, int x, int y,
+                      int begin, int end, RadianceFn&& radiance, Color& sum) {
   const std::uint64_t pixel_index = std::uint64_t(y) * std::uint64_t(camera.width) + std::uint64_t(x);
   int added = 0;
   // BEGIN TASK stage1.render.pixel_samples
   for (int k = begin; k < end && !interrupt_requested(); ++k, ++added) {
     SamplerType rng(settings.seed, pixel_index, std::uint64_t(settings.first_sample + k));
-    const Vec2 offset = settings.pixel_center_only ? Vec2(0.5f) : rng.uniform2();
-    const Ray ray = generate_camera_ray(camera, Vec2(float(x), float(y)) + offset);
-    sum += radiance(ray, rng);
+    const FilterSample s = settings.pixel_center_only ? FilterSample{Vec2(0.5f), 1.0f} : filter.sample(rng.uniform2());
+    const Vec2 film_point = Vec2(float(x), float(y)) + s.film_offset;
+    const Ray ray = camera.aperture_radius > 0.0f ? generate_lens_ray(camera, film_point, rng.uniform2())
+                                                  : generate_camera_ray(camera, film_point);
+    sum += s.weight * radiance(ray, rng);
   }
   // PLACEHOLDER
   // report_unfinished_task("stage1.render.pixel_samples");
@@ -47,7 +57,7 @@ int add_pixel_samples(const PinholeCamera& camera, const RenderSettings& setting
   //   sum = radiance(generate_camera_ray(camera, Vec2(x + 0.5f, y + 0.5f)), rng);
   //   added = 1;
   // }
-  // (void)end;
+  // (void)end, (void)filter;
   // END TASK
   return added;
 }
@@ -71,9 +81,10 @@ inline int samples_per_pass(std::int64_t pixels, int spp) {
 // much it has). `SamplerType` makes each sample's numbers from (seed, pixel, sample index): Rng
 // (independent random numbers) unless a later stage passes another.
 template <class SamplerType = Rng, class RadianceFn>
-SampleSums render_samples(const PinholeCamera& camera, const RenderSettings& settings, int threads,
+SampleSums render_samples(const Camera& camera, const RenderSettings& settings, int threads,
                           RadianceFn&& radiance, ProgressBar* progress = nullptr) {
   const PixelRect window = settings.window();
+  const PixelFilter filter(settings.filter);  // once: it tabulates its inverse distribution
   SampleSums sums(window.width(), window.height());
   const int per_pass = samples_per_pass(window.area(), settings.spp);
   for (int begin = 0; begin < settings.spp && !interrupt_requested(); begin += per_pass) {
@@ -83,8 +94,8 @@ SampleSums render_samples(const PinholeCamera& camera, const RenderSettings& set
       for (int ty = tile.y0; ty < tile.y1; ++ty)
         for (int tx = tile.x0; tx < tile.x1; ++tx) {
           Color sum = sums.sum(tx, ty);
-          const int added = add_pixel_samples<SamplerType>(camera, settings, window.x0 + tx, window.y0 + ty, begin,
-                                                           end, radiance, sum);
+          const int added = add_pixel_samples<SamplerType>(camera, filter, settings, window.x0 + tx, window.y0 + ty,
+                                                           begin, end, radiance, sum);
           sums.set(tx, ty, sum, sums.count(tx, ty) + std::uint32_t(added));
           tile_samples += std::uint64_t(added);
         }
@@ -98,7 +109,7 @@ SampleSums render_samples(const PinholeCamera& camera, const RenderSettings& set
 // program shell's progress bar and output (common/program.h).
 template <class SamplerType = Rng, class RadianceFn>
 void render_and_write(const char* program, const CommonOptions& options, const SceneDescription& description,
-                      const RenderSettings& settings, const PinholeCamera& camera, PixelMeaning meaning,
+                      const RenderSettings& settings, const Camera& camera, PixelMeaning meaning,
                       RadianceFn&& radiance) {
   render_with_progress_and_write(program, options, description, settings, meaning, [&](ProgressBar* progress) {
     return render_samples<SamplerType>(camera, settings, options.threads, radiance, progress);
@@ -107,7 +118,7 @@ void render_and_write(const char* program, const CommonOptions& options, const S
 
 // The image: each pixel the mean of its samples (SampleSums::mean).
 template <class SamplerType = Rng, class RadianceFn>
-Image render_image(const PinholeCamera& camera, const RenderSettings& settings, int threads,
+Image render_image(const Camera& camera, const RenderSettings& settings, int threads,
                    RadianceFn&& radiance, ProgressBar* progress = nullptr) {
   return render_samples<SamplerType>(camera, settings, threads, std::forward<RadianceFn>(radiance), progress).mean();
 }

@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
         const RenderSettings settings = options.settings_for(description);
         whitted.max_depth = settings.max_depth;
         const WhittedScene scene(description, triangle_method);
-        const PinholeCamera camera(description.camera, settings.width, settings.height);
+        const Camera camera(description.camera, settings.width, settings.height);
         render_and_write("stage2", options, description, settings, camera, meaning_of(view), [&](const Ray& ray, Rng&) {
           return view == DebugView::none ? whitted_radiance(scene, ray, whitted) : whitted_debug(scene, ray, view);
         });

@@ -107,7 +107,7 @@ int main(int argc, char** argv) {
 
         WhittedOptions whitted;
         whitted.max_depth = settings.max_depth;
-        const PinholeCamera camera(description.camera, settings.width, settings.height);
+        const Camera camera(description.camera, settings.width, settings.height);
         const auto render_start = std::chrono::steady_clock::now();
         render_and_write("stage3", options, description, settings, camera, meaning_of(view), [&](const Ray& ray, Rng&) {
           return view == DebugView::none ? whitted_radiance(scene, ray, whitted) : whitted_debug(scene, ray, view);

@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
         const LightingScene scene(description, lighting);
         std::printf("stage4: %zu area emitter%s, %zu point light%s\n", scene.emitters().size(),
                     scene.emitters().size() == 1 ? "" : "s", scene.lights().size(), scene.lights().size() == 1 ? "" : "s");
-        const PinholeCamera camera(description.camera, settings.width, settings.height);
+        const Camera camera(description.camera, settings.width, settings.height);
         render_and_write("stage4", options, description, settings, camera, PixelMeaning::radiance,
                          [&](const Ray& ray, Sampler& rng) { return direct_radiance(scene, ray, direct, rng); });
       });

@@ -8,6 +8,7 @@
 // its pdf (tests/stage4/warp_test.cpp).
 #pragma once
 
+#include "01-ray-casting/disk_sampling.h"
 #include "common/math.h"
 
 namespace rt {
@@ -41,11 +42,8 @@ inline float uniform_cone_pdf(float cos_theta_max) { return 1.0f / (2.0f * kPi *
 // ---- Disk and triangle (area densities) -------------------------------------------------------
 
 
-// Task stage4.warp.concentric_disk. Uniform over the unit disk by Shirley and Chiu's concentric
-// map ("A Low Distortion Map Between Disk and Square", JGT 2(3), 1997): the square's concentric
-// squares go to the disk's concentric circles, so strata stay compact. pdf = 1 / pi per unit area.
-Vec2 sample_uniform_disk(Vec2 u);
-inline float uniform_disk_pdf(Vec2 p) { return p.x * p.x + p.y * p.y <= 1.0f ? kInvPi : 0.0f; }
+// The unit disk's uniform sample (Shirley and Chiu's concentric map), its pdf and its inverse are
+// stage 1's, where the thin lens first needs them: 01-ray-casting/disk_sampling.h.
 
 // Task stage4.warp.triangle. Barycentrics (b0, b1, b2) of a point uniform over a triangle:
 // b0 = 1 - sqrt(u0), b1 = u1 sqrt(u0) (Turk, "Generating Random Points in Triangles", Graphics Gems,
@@ -61,9 +59,6 @@ Vec2 invert_uniform_hemisphere(Vec3 w);
 Vec2 invert_uniform_sphere(Vec3 w);
 Vec2 invert_cosine_hemisphere(Vec3 w);
 Vec2 invert_uniform_cone(Vec3 w, float cos_theta_max);
-// The concentric map's inverse: in the sector |x| >= |y| the radius was a = 2 u0 - 1 and
-// y / x = tan(pi/4 b / a); in the other, b = 2 u1 - 1 and the angle pi/2 - pi/4 a / b.
-Vec2 invert_uniform_disk(Vec2 p);
 // From barycentrics: u0 = (1 - b0)^2, u1 = b1 / (1 - b0).
 Vec2 invert_uniform_triangle(Vec3 b);
 

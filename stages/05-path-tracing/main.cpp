@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
         const RenderSettings settings = options.settings_for(description);
         path.max_depth = settings.max_depth;
         const LightingScene scene(description, lighting);
-        const PinholeCamera camera(description.camera, settings.width, settings.height);
+        const Camera camera(description.camera, settings.width, settings.height);
         SampleGuard guard;
         render_with_progress_and_write("stage5", options, description, settings, PixelMeaning::radiance,
                                        [&](ProgressBar* progress) {

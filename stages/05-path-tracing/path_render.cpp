@@ -16,7 +16,7 @@ const char* integrator_name(PathIntegrator integrator) {
 
 const char* sampler_name(SamplerKind sampler) { return sampler == SamplerKind::sobol ? "sobol" : "independent"; }
 
-SampleSums render_path_samples(const LightingScene& scene, const PinholeCamera& camera,
+SampleSums render_path_samples(const LightingScene& scene, const Camera& camera,
                                const RenderSettings& settings, const PathOptions& options, SamplerKind sampler,
                                int threads, SampleGuard& guard, ProgressBar* progress) {
   // `auto&`: each sampler's own path_radiance, with its calls compiled in.
@@ -25,7 +25,7 @@ SampleSums render_path_samples(const LightingScene& scene, const PinholeCamera& 
   return render_samples<Rng>(camera, settings, threads, radiance, progress);
 }
 
-Image render_paths(const LightingScene& scene, const PinholeCamera& camera, const RenderSettings& settings,
+Image render_paths(const LightingScene& scene, const Camera& camera, const RenderSettings& settings,
                    const PathOptions& options, SamplerKind sampler, int threads, SampleGuard& guard,
                    ProgressBar* progress) {
   return render_path_samples(scene, camera, settings, options, sampler, threads, guard, progress).mean();

@@ -18,12 +18,12 @@ const char* sampler_name(SamplerKind sampler);           // independent, sobol
 
 // The image of `settings.spp` paths per pixel. Samples with NaN, infinite or negative radiance are
 // counted by `guard` and enter the image as black. Deterministic for any thread count.
-Image render_paths(const LightingScene& scene, const PinholeCamera& camera, const RenderSettings& settings,
+Image render_paths(const LightingScene& scene, const Camera& camera, const RenderSettings& settings,
                    const PathOptions& options, SamplerKind sampler, int threads, SampleGuard& guard,
                    ProgressBar* progress = nullptr);
 // The same undivided, per pixel the sum and number of its paths (stage 1's render_samples), for a
 // program that writes sample batches.
-SampleSums render_path_samples(const LightingScene& scene, const PinholeCamera& camera,
+SampleSums render_path_samples(const LightingScene& scene, const Camera& camera,
                                const RenderSettings& settings, const PathOptions& options, SamplerKind sampler,
                                int threads, SampleGuard& guard, ProgressBar* progress = nullptr);
 

@@ -110,8 +110,59 @@ TEST(Png, WritesAValidPngOfTheRightSize) {
   EXPECT_EQ(bytes[23], 3);
 }
 
+TEST(Exr, FloatRoundTripIsBitExact) {
+  ScratchDir dir;
+  const Image image = test_pattern();
+  write_image(dir / "a.exr", image);
+  const std::string bytes = testing::read_text(dir / "a.exr");
+  EXPECT_EQ(bytes.substr(0, 4), std::string("\x76\x2f\x31\x01", 4)) << "the OpenEXR magic number";
+  EXPECT_EQ(decode_exr(bytes, "a.exr"), image);
+}
+
+// Half floats keep 11 significant bits: every value comes back within half an ulp of half
+// (2^-11 relative), and the 1e-30 and 3.4e38 beyond half's range come back as 0 and infinity.
+TEST(Exr, HalfRoundTripKeepsElevenBits) {
+  ScratchDir dir;
+  Image image(64, 3);
+  for (int x = 0; x < 64; ++x) image.at(x, 0) = image.at(x, 1) = image.at(x, 2) = Color(std::ldexp(1.37f, x / 4 - 8));
+  ImageEncoding encoding;
+  encoding.exr_half = true;
+  write_image(dir / "h.exr", image, encoding);
+  const std::string bytes = testing::read_text(dir / "h.exr");
+  const Image back = decode_exr(bytes, "h.exr");
+  ASSERT_EQ(back.width(), 64);
+  for (size_t i = 0; i < image.pixel_count(); ++i)
+    ASSERT_NEAR(back.pixels()[i].r, image.pixels()[i].r, image.pixels()[i].r * 0x1p-11f) << i;
+  write_image(dir / "f.exr", image);
+  EXPECT_LT(bytes.size(), testing::read_text(dir / "f.exr").size()) << "half the bytes per channel";
+}
+
+TEST(Exr, ABrokenFileIsAnInputErrorNamingIt) {
+  EXPECT_THROW(decode_exr("not an exr", "x.exr"), InputError);
+  try {
+    decode_exr(std::string("\x76\x2f\x31\x01\x02\0\0\0", 8), "broken.exr");
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.exr"), std::string::npos);
+  }
+}
+
+// A PNG goes through the display transform; the linear formats never do.
+TEST(ImageFiles, OnlyThePngIsToneMapped) {
+  ScratchDir dir;
+  const Image image(4, 4, Color(0.25f));
+  ImageEncoding bright;
+  bright.display.exposure_stops = 2.0f;
+  write_image(dir / "a.pfm", image, bright);
+  write_image(dir / "a.exr", image, bright);
+  EXPECT_EQ(read_pfm(dir / "a.pfm"), image);
+  EXPECT_EQ(decode_exr(testing::read_text(dir / "a.exr"), "a.exr"), image);
+  EXPECT_NE(encode_png(image, bright.display), encode_png(image));
+  EXPECT_EQ(encode_png(Image(4, 4, Color(1.0f))), encode_png(image, bright.display)) << "0.25 x 2^2 = 1";
+}
+
 TEST(ImageFiles, FormatComesFromTheEnding) {
   EXPECT_EQ(image_format_for("x.png"), ImageFormat::png);
+  EXPECT_EQ(image_format_for("x.exr"), ImageFormat::exr);
   EXPECT_EQ(image_format_for("dir.d/x.pfm"), ImageFormat::pfm);
   EXPECT_THROW(image_format_for("x.jpg"), UsageError);
   EXPECT_THROW(image_format_for("png"), UsageError);

@@ -80,7 +80,7 @@ SceneDescription make_acne_scene(float scale, int width, int height) {
 ShadowErrors count_shadow_errors(float scale, const OffsetPolicy& policy, int width, int height) {
   const SceneDescription description = make_acne_scene(scale, width, height);
   const WhittedScene scene(description);
-  const PinholeCamera camera(description.camera, width, height);
+  const Camera camera(description.camera, width, height);
   const Placement place = placement(scale);
   const Vec3 light = description.lights[0].position;
 

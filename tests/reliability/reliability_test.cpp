@@ -179,7 +179,7 @@ TEST(CommandLine, ImpossibleNumbersAreOneLineUsageErrors) {
 // A render in this process that a "signal" stops after `after` samples: every pixel it reached is
 // the mean of the samples it finished, so with a constant radiance exactly that constant.
 TEST(Interrupt, PartialImageIsNormalizedPerPixel) {
-  const PinholeCamera camera(CameraSpec{}, 40, 30);
+  const Camera camera(CameraSpec{}, 40, 30);
   RenderSettings settings;
   settings.width = 40, settings.height = 30, settings.spp = 64;
   std::atomic<int> samples{0};

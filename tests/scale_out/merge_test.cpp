@@ -27,7 +27,7 @@ constexpr int kWidth = 24, kHeight = 20, kSpp = 16;
 struct CornellRenderer {
   SceneDescription description = load_scene(testing::source_path("assets/scenes/cornell-box.json"));
   LightingScene scene{description, LightingOptions{}};
-  PinholeCamera camera{description.camera, kWidth, kHeight};
+  Camera camera{description.camera, kWidth, kHeight};
 
   RenderSettings settings(int first_sample, int spp, std::optional<PixelRect> crop = {}) const {
     RenderSettings s = description.render;

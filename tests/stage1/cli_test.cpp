@@ -84,6 +84,34 @@ TEST(Stage1Cli, BadInputExitsWithOneAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
+// --filter, the lens keys, the display flags and EXR output, as a user meets them.
+TEST(Stage1Cli, FiltersLensesDisplayFlagsAndExr) {
+  ScratchDir dir;
+  const std::string dof = source_path("assets/scenes/depth-of-field.json").string();
+  const std::string small = " --width 32 --height 18 --spp 2 --threads 2";
+  const auto exr = run_command(stage1("--scene " + dof + small + " --filter mitchell --out " + (dir / "a.exr").string()), dir);
+  ASSERT_EQ(exr.exit_code, 0) << exr.err;
+  EXPECT_EQ(decode_exr(testing::read_text(dir / "a.exr"), "a.exr").width(), 32);
+  const auto png = run_command(
+      stage1("--scene " + dof + small + " --exposure -1.5 --tone aces --gamma 2.2 --out " + (dir / "a.png").string()), dir);
+  EXPECT_EQ(png.exit_code, 0) << png.err;
+  const std::string out = " --out " + (dir / "x.png").string();
+  expect_one_line_error(run_command(stage1("--scene " + dof + out + " --filter sinc"), dir), 2, "--filter");
+  expect_one_line_error(run_command(stage1("--scene " + dof + out + " --tone filmic"), dir), 2, "--tone");
+  expect_one_line_error(run_command(stage1("--scene " + dof + out + " --exposure nan"), dir), 2, "--exposure");
+  expect_one_line_error(run_command(stage1("--scene " + dof + out + " --gamma 0"), dir), 2, "--gamma");
+  expect_one_line_error(run_command(stage1("--scene " + dof + " --out " + (dir / "x.tiff").string()), dir), 2, ".exr");
+  testing::write_text(dir / "lens.json", R"({"camera": {"position": [0,0,-5], "look_at": [0,0,0], "vfov": 40,
+    "aperture_radius": -0.1}, "materials": {"m": {}}, "shapes": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}]})");
+  expect_one_line_error(run_command(stage1("--scene " + (dir / "lens.json").string() + out), dir), 1,
+                        "lens.json: /camera/aperture_radius: aperture radius must be in [0");
+  testing::write_text(dir / "filter.json", R"({"render": {"filter": "lanczos"}, "camera": {"position": [0,0,-5],
+    "look_at": [0,0,0], "vfov": 40}, "materials": {"m": {}}, "shapes": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}]})");
+  expect_one_line_error(run_command(stage1("--scene " + (dir / "filter.json").string() + out), dir), 1,
+                        "filter.json: /render/filter: unknown filter");
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
 TEST(Stage1Cli, UnwritableOutputFailsBeforeRendering) {
   ScratchDir dir;
   expect_one_line_error(run_command(stage1("--scene " + kSpheres + " --out " + (dir / "no" / "dir.png").string()), dir), 1,

@@ -27,7 +27,7 @@ SceneDescription two_spheres() {
 Image render(const SceneDescription& d, const RenderSettings& settings, int threads,
              DebugView view = DebugView::none) {
   const RayCastingScene scene(d);
-  const PinholeCamera camera(d.camera, settings.width, settings.height);
+  const Camera camera(d.camera, settings.width, settings.height);
   return render_image(camera, settings, threads,
                       [&](const Ray& ray, Rng&) { return cast_ray(scene, ray, view); });
 }
@@ -101,7 +101,7 @@ TEST(Render, PixelValueIsTheMeanOfItsSamples) {
   s.width = 4;
   s.height = 4;
   s.spp = 4096;
-  const PinholeCamera camera(d.camera, s.width, s.height);
+  const Camera camera(d.camera, s.width, s.height);
   const Image image = render_image(camera, s, 2, [&](const Ray& ray, Rng&) {
     return Color(ray.direction.x / ray.direction.z, ray.direction.y / ray.direction.z, 0.0f);
   });
@@ -123,7 +123,7 @@ TEST(Render, SampleBatchesAreTheWholeRendersSamples) {
   RenderSettings s = d.render;
   s.width = 6;
   s.height = 4;
-  const PinholeCamera camera(d.camera, s.width, s.height);
+  const Camera camera(d.camera, s.width, s.height);
   const auto position = [](const Ray& ray, Rng&) { return Color(ray.direction.x, ray.direction.y, 0.0f); };
   const auto sums = [&](int first, int spp) {
     RenderSettings batch = s;

@@ -268,7 +268,7 @@ class WhittedScenes : public ::testing::Test {
     const WhittedScene scene(d);
     WhittedOptions options;
     options.max_depth = s.max_depth;
-    return render_image(PinholeCamera(d.camera, s.width, s.height), s, threads,
+    return render_image(Camera(d.camera, s.width, s.height), s, threads,
                         [&](const Ray& ray, Rng&) { return whitted_radiance(scene, ray, options); });
   }
 };

@@ -4,7 +4,7 @@
 #include "02-whitted/optics.h"
 #include "04-radiometry/bsdf.h"
 #include "04-radiometry/warp.h"
-#include "chi_square.h"
+#include "support/chi_square.h"
 
 #include <gtest/gtest.h>
 

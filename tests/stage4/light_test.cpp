@@ -7,7 +7,7 @@
 #include "04-radiometry/emitters.h"
 #include "04-radiometry/lighting_scene.h"
 #include "04-radiometry/radiometry.h"
-#include "chi_square.h"
+#include "support/chi_square.h"
 #include "common/error.h"
 #include "common/frame.h"
 #include "common/random.h"

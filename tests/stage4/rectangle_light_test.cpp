@@ -6,7 +6,7 @@
 #include "04-radiometry/lighting_scene.h"
 #include "04-radiometry/radiometry.h"
 #include "04-radiometry/spherical_rectangle.h"
-#include "chi_square.h"
+#include "support/chi_square.h"
 #include "emitter_estimates.h"
 #include "common/random.h"
 

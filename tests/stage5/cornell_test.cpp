@@ -20,7 +20,7 @@ constexpr int kSize = 64;  // tests render 64 x 64; the 256 x 256 reference is a
 struct Cornell {
   SceneDescription description = load_scene(testing::source_path("assets/scenes/cornell-box.json"));
   LightingScene scene{description};
-  PinholeCamera camera{description.camera, kSize, kSize};
+  Camera camera{description.camera, kSize, kSize};
   Image reference = downsample(read_pfm(testing::source_path("assets/references/cornell-box-256.pfm")), 256 / kSize);
 };
 
@@ -118,7 +118,7 @@ TEST(CornellBox, ErrorFallsAsOneOverSquareRootOfSamples) {
   // same and the few very bright samples of a 1-spp image do not decide the slope.
   const Cornell& c = cornell();
   const Image reference = downsample(c.reference, 2);
-  const PinholeCamera camera(c.description.camera, kSize / 2, kSize / 2);
+  const Camera camera(c.description.camera, kSize / 2, kSize / 2);
   const PathOptions options;  // MIS
   SampleGuard guard;
   std::vector<double> spp, error[2];

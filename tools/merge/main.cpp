@@ -1,11 +1,12 @@
 // merge: adds sample batches (common/sample_batch.h), written by any stage program with
 // --out NAME.json, into one render, and says how far it has got (docs/scale-out.md).
 //
-//   merge --out OUT [--spp N] [--partial] [--reference REF.pfm] BATCH...
+//   merge --out OUT [--spp N] [--partial] [--reference REF.pfm] [--exposure S --tone T ...] BATCH...
 //
-// A BATCH is a description NAME.json or a folder (every *.json in it). OUT ending in .png or .pfm
-// gets the image; ending in .json, the merged batch, to be merged again later (one merge per
-// machine, then one of those). Exit codes as the stage programs: 1 for batches that do not add up
+// A BATCH is a description NAME.json or a folder (every *.json in it). OUT ending in .png, .pfm or
+// .exr gets the image (a PNG through the display transform flags, as in the stage programs);
+// ending in .json, the merged batch, to be merged again later (one merge per machine, then one of
+// those). Exit codes as the stage programs: 1 for batches that do not add up
 // (each refusal one line naming the files), 2 for bad usage.
 #include "common/batch_merge.h"
 #include "common/cli.h"
@@ -60,7 +61,7 @@ std::string spp_reached(const MergeResult& r) {
 }
 
 void run(const std::string& out, const std::optional<int>& spp, bool partial, const std::optional<std::string>& reference,
-         const std::vector<std::string>& inputs) {
+         const std::vector<std::string>& inputs, const ImageEncoding& encoding) {
   if (!is_batch_path(out)) image_format_for(out);
   for (const std::string& file : output_files(out)) check_output_writable(file);
   const std::vector<SampleBatch> batches = read_batches(inputs);
@@ -93,7 +94,7 @@ void run(const std::string& out, const std::optional<int>& spp, bool partial, co
     result.merged.file = out;
     write_sample_batch(result.merged);
   } else {
-    write_image(out, image);
+    write_image(out, image, encoding);
   }
   const RenderIdentity& id = result.merged.identity;
   std::printf("merge: %zu batch%s of %s %s (%dx%d, seed %llu): %s%s%s; wrote %s\n", batches.size(),
@@ -114,7 +115,7 @@ int main(int argc, char** argv) {
   std::optional<std::string> reference;
   std::vector<std::string> inputs;
   app.add_option("--out", out,
-                 "Output: .png or .pfm (the image) or .json (the merged batch, to merge again later)")
+                 "Output: .png, .pfm or .exr (the image) or .json (the merged batch, to merge again later)")
       ->required();
   app.add_option("--spp", spp, "Samples per pixel of the finished render (default: the most any batch reaches)")
       ->transform(decimal(1, kMaxSpp));
@@ -122,6 +123,8 @@ int main(int argc, char** argv) {
                "Progressive refinement: merge the batches there are, each pixel the mean of the samples it has");
   app.add_option("--reference", reference, "A reference image (PFM) to report the merged render's RMSE against");
   app.add_option("batches", inputs, "Batch descriptions (NAME.json) or folders of them")->required();
+  ImageEncoding encoding;
+  add_image_encoding_flags(app, encoding);
   if (const std::optional<int> exit_code = parse_command_line(app, argc, argv, "merge")) return *exit_code;
-  return run_reporting_errors("merge", [&] { run(out, spp, partial, reference, inputs); });
+  return run_reporting_errors("merge", [&] { run(out, spp, partial, reference, inputs, encoding); });
 }

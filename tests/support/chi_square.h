@@ -2,7 +2,7 @@
 // sampling tests: draw many samples, histogram them, integrate the claimed pdf over every bin to
 // get the expected counts, pool sparse bins, and reject if Pearson's statistic is improbable.
 // Fixed seeds make each test deterministic; the significance level is corrected for the number of
-// chi-square tests in the stage-4 suite (Sidak), so the family as a whole has a 1% false-alarm
+// chi-square tests in the suites that use it (Sidak), so the family as a whole has a 1% false-alarm
 // rate while each test still rejects a wrong pdf (see DistributionTest.RejectsAWrongPdf).
 #pragma once
 
@@ -28,7 +28,8 @@ inline constexpr double kHalfPi = 0.5 * kPiD;
 // visible-normal cutoff wo . m = 0, the Phong lobe at n = 1) need that many to be exact enough
 // for a million samples.
 
-// Upper bound on the number of chi-square tests in tests/stage4 (the family for the correction).
+// Upper bound on the number of chi-square tests in the suites that use this file (stages 1 and 4):
+// the family for the correction.
 inline constexpr int kChiSquareFamilySize = 64;
 inline constexpr double kFamilySignificance = 0.01;
 

@@ -1,0 +1,30 @@
+// The pixel filters' trade, measured (docs/stage1.md, "Pixel reconstruction filters"): each filter
+// renders the zone plate of tests/experiments/filter_aliasing.h, 256 x 256 at 256 samples per pixel,
+// and is scored by the energy that folded back from above Nyquist (aliasing) and by the share of
+// the passband's contrast it keeps (sharpness), with the render's time.
+//   filter_aliasing OUT.csv
+#include "experiments/filter_aliasing.h"
+
+#include <chrono>
+#include <cstdio>
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: filter_aliasing OUT.csv\n");
+    return 2;
+  }
+  std::FILE* out = std::fopen(argv[1], "w");
+  if (!out) {
+    std::fprintf(stderr, "filter_aliasing: cannot write %s\n", argv[1]);
+    return 1;
+  }
+  std::fprintf(out, "filter,aliasing,passband,seconds\n");
+  for (const auto& [type, name] : rt::kPixelFilterNames) {
+    const auto start = std::chrono::steady_clock::now();
+    const rt::ZonePlateScores s = rt::measure_zone_plate(type, 256, 256, 1);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(out, "%s,%.6f,%.6f,%.3f\n", name, s.aliasing, s.passband, seconds);
+    std::printf("%-16s aliasing %.4f  passband %.4f  %.2f s\n", name, s.aliasing, s.passband, seconds);
+  }
+  return std::fclose(out) == 0 ? 0 : 1;
+}
