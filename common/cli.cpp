@@ -28,9 +28,7 @@ RenderSettings CommonOptions::settings_for(const SceneDescription& description) 
   if (height) s.height = *height;
   if (seed) s.seed = *seed;
   if (max_depth) s.max_depth = *max_depth;
-  if (filter)
-    for (const auto& [type, name] : kPixelFilterNames)
-      if (*filter == name) s.filter = type;
+  if (filter) s.filter = pixel_filter_from_name(*filter).value();  // --filter's check admits only known names
   if (sample_range) {
     const SampleRangeFlag range = parse_sample_range(*sample_range);
     s.first_sample = range.first;

@@ -37,6 +37,11 @@ inline const char* pixel_filter_name(PixelFilterType type) {
     if (t == type) return name;
   return "?";
 }
+inline std::optional<PixelFilterType> pixel_filter_from_name(const std::string& name) {
+  for (const auto& [type, known] : kPixelFilterNames)
+    if (name == known) return type;
+  return std::nullopt;
+}
 
 // What the command line may override (common/cli.h); the scene file gives the defaults.
 struct RenderSettings {

@@ -6,7 +6,6 @@
 #include "common/obj_loader.h"
 #include "common/scene.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -25,12 +24,9 @@ RenderSettings parse_render(const JsonNode& n) {
   if (n.has("max_depth")) r.max_depth = int(n["max_depth"].as_int(0, 1000));
   if (n.has("pixel_center_only")) r.pixel_center_only = n["pixel_center_only"].as_bool();
   if (n.has("filter")) {
-    const std::string name = n["filter"].as_string();
-    const auto* known = std::find_if(kPixelFilterNames.begin(), kPixelFilterNames.end(),
-                                     [&](const auto& entry) { return name == entry.second; });
-    if (known == kPixelFilterNames.end())
-      n["filter"].fail("unknown filter (box, tent, gaussian, mitchell or blackman-harris)");
-    r.filter = known->first;
+    const std::optional<PixelFilterType> filter = pixel_filter_from_name(n["filter"].as_string());
+    if (!filter) n["filter"].fail("unknown filter (box, tent, gaussian, mitchell or blackman-harris)");
+    r.filter = *filter;
   }
   return r;
 }

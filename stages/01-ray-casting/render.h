@@ -27,13 +27,12 @@
 namespace rt {
 
 // Task stage1.render.pixel_samples: adds samples [begin, end) of pixel (x, y) to `sum` and returns
-// how many it added. Sample k is the camera ray through (x, y) + the film offset of the filter's
-// sample for (u, v), the first two numbers of SamplerType(seed, pixel index, first_sample + k) (the
-// pixel's centre for settings.pixel_center_only), its radiance times the sample's weight; `filter`
-// is settings.filter's. A camera
-// with an aperture takes its lens point from the next two numbers (generate_lens_ray); a pinhole
-// draws none, so pinhole renders are what they always were. The same numbers whichever run, thread
-// or pass takes the sample. `radiance(ray, rng)` returns the radiance arriving along the ray, drawing
+// how many it added. Sample k is the camera ray through (x, y) + the film offset of `filter`'s
+// sample (settings.filter's) for (u, v), the first two numbers of SamplerType(seed, pixel index,
+// first_sample + k), or through the pixel's centre for settings.pixel_center_only; its radiance
+// times the sample's weight is added. A camera with an aperture takes its lens point from the next
+// two numbers (generate_lens_ray); a pinhole draws none, so pinhole renders are what they always
+// were. The same numbers whichever run, thread or pass takes the sample. `radiance(ray, rng)` returns the radiance arriving along the ray, drawing
 // any further numbers from the same `rng`. A stop request (common/interrupt.h) ends the loop
 // between two samples: the pixel keeps the samples it finished.
 template <class SamplerType, class RadianceFn>

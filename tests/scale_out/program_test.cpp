@@ -182,6 +182,24 @@ TEST_F(MergeProgram, BatchesOfAnotherSceneSeedOrSizeAreRefused) {
   EXPECT_EQ(run_merge(batch(0) + " " + (dir / "explicit.json").string() + " " + batch(2)).exit_code, 0);
 }
 
+// A wide filter still keeps each sample its own pixel's (filter importance sampling, stage 1): two
+// tiles of a Mitchell-filtered render merge into the whole render bit for bit, and a filtered
+// batch does not merge with a box-filtered one.
+TEST_F(MergeProgram, FilteredTilesMergeIntoTheFilteredRenderAndOnlyWithIt) {
+  auto run = [&](const std::string& arguments) {
+    const auto r = run_command(command(kPrograms[4], "--filter mitchell " + arguments), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  };
+  run("--spp 4 --out " + (dir / "whole.pfm").string());
+  run("--spp 4 --crop 0:32,0:10 --out " + (dir / "top.json").string());
+  run("--spp 4 --crop 0:32,10:24 --out " + (dir / "bottom.json").string());
+  const auto merged = run_merge((dir / "top.json").string() + " " + (dir / "bottom.json").string());
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  EXPECT_TRUE(read_pfm(dir / "out.pfm") == read_pfm(dir / "whole.pfm"));
+  run("--sample-range 4:10 --out " + (dir / "mitchell.json").string());
+  expect_one_line_error(run_merge(batch(0) + " " + (dir / "mitchell.json").string() + " " + batch(2)), 1, "--filter=mitchell");
+}
+
 TEST_F(MergeProgram, BadUsageIsExitTwoAndMissingFilesExitOne) {
   expect_one_line_error(run_command(merge(batch(0)), dir), 2, "--out is required");
   expect_one_line_error(run_command(merge("--out x.txt " + batch(0)), dir), 2, "unknown image format '.txt'");
