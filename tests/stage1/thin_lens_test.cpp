@@ -3,6 +3,7 @@
 // of the focal plane, by finding, for each lens point, the film point that sees a given scene point.
 #include "01-ray-casting/camera_rays.h"
 #include "01-ray-casting/disk_sampling.h"
+#include "01-ray-casting/render.h"
 #include "common/random.h"
 #include "support/chi_square.h"
 
@@ -122,6 +123,34 @@ TEST(ThinLens, FocusDistanceDefaultsToTheLookAtPoint) {
   EXPECT_FLOAT_EQ(c.focus_distance, glm::length(spec.look_at - spec.position));
   EXPECT_THROW(Camera(lens_spec(-0.1f, 1.0f), 10, 10), std::invalid_argument);
   EXPECT_THROW(Camera(lens_spec(0.1f, -1.0f), 10, 10), std::invalid_argument);
+}
+
+// The pixel loop (render.h) takes a lens point only when the camera has an aperture: a pinhole
+// draws no lens numbers (so every pinhole render is what it was), a lens draws two after the
+// pixel's two, and the ray then starts on the lens. Each pixel's value is recomputed from its own
+// sample streams: the radiance returns the next number of the stream after the camera's.
+TEST(ThinLens, ThePixelLoopDrawsLensNumbersOnlyWithAnAperture) {
+  for (const float aperture : {0.0f, 0.3f}) {
+    const Camera camera(lens_spec(aperture, 4.0f), 6, 4);
+    RenderSettings settings;
+    settings.width = 6, settings.height = 4, settings.spp = 5, settings.seed = 9;
+    const Image image = render_image(camera, settings, 1, [&](const Ray& ray, Rng& rng) {
+      const bool on_lens = glm::length(ray.origin - camera.position) > 0.0f;
+      EXPECT_EQ(on_lens, aperture > 0.0f) << "a lens ray starts on the lens, a pinhole ray at the pinhole";
+      return Color(rng.uniform());
+    });
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 6; ++x) {
+        Color sum(0.0f);
+        for (int k = 0; k < 5; ++k) {
+          Rng rng(9, std::uint64_t(y * 6 + x), std::uint64_t(k));
+          rng.uniform2();                       // the pixel's offset
+          if (aperture > 0.0f) rng.uniform2();  // the lens point
+          sum += Color(rng.uniform());
+        }
+        EXPECT_EQ(image.at(x, y), sum / 5.0f) << "aperture " << aperture << ", pixel " << x << ", " << y;
+      }
+  }
 }
 
 // The concentric map: uniform on the disk (chi-square on rings of equal area and sectors), and one
