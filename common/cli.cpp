@@ -259,10 +259,9 @@ int run_stage_program(int argc, char** argv, const std::string& program, const s
                  "scene's, or box)")
       ->check(CLI::IsMember(filter_names));
   add_image_encoding_flags(app, options.encoding);
-  const std::set<std::string> common_flags = {"--help",      "--scene", "--out",     "--spp",      "--width",
-                                              "--height",    "--threads", "--seed",  "--sample-range", "--crop",
-                                              "--max-depth", "--filter", "--exposure", "--tone",    "--white",
-                                              "--gamma",     "--exr-half"};
+  const std::set<std::string> common_flags = {
+      "--help", "--scene", "--out", "--spp", "--width", "--height", "--threads", "--seed", "--sample-range",
+      "--crop", "--max-depth", "--filter", "--exposure", "--tone", "--white", "--gamma", "--exr-half"};
   add_stage_flags(app);
   const std::vector<std::pair<CLI::Option*, std::string>> stage_flags = stage_flag_defaults(app, common_flags);
 

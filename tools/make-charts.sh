@@ -9,7 +9,7 @@ cmake --preset release >/dev/null
 cmake --build --preset release --target sphere_precision filter_aliasing offset_vs_scale triangle_leaks stage2_pictures accel_scaling \
   direct_error_vs_time path_error_vs_time stage4 stage5
 build/release/bin/sphere_precision docs/charts/stage1-sphere-precision.csv
-build/release/bin/filter_aliasing docs/charts/stage1-filter-aliasing.csv  # about 25 s
+build/release/bin/filter_aliasing docs/charts/stage1-filter-aliasing.csv docs/images  # about 15 s
 build/release/bin/offset_vs_scale docs/charts/stage2-offset-vs-scale.csv
 build/release/bin/triangle_leaks docs/charts/stage2-triangle-leaks.csv  # the table in docs/stage2.md
 build/release/bin/stage2_pictures "$root"   # docs/images/stage2-acne.png, stage2-cracks.png

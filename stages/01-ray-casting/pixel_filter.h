@@ -3,7 +3,7 @@
 // Why a pixel is an average (the lecture's closing question). A pixel is not a point of the film
 // but a small area of it, and what a display shows there should be the radiance reaching the film
 // around the pixel's centre c, weighted by a filter f (Mitchell and Netravali, "Reconstruction
-// Filters in Computer Graphics", SIGGRAPH 1988; PBR 4th ed. section 5.4):
+// Filters in Computer Graphics", SIGGRAPH 1988; PBR 4th ed. section 8.8):
 //   I(c) = integral f(s) L(c + s) ds / integral f(s) ds.
 // The box filter (f = 1 over the pixel) makes that the plain average of the radiance over the
 // pixel; wider filters trade aliasing (detail finer than the pixels folding into false patterns)
@@ -75,7 +75,7 @@ class PixelFilter {
   double inverse_abs_integral(double t) const;
 
   // Task stage1.filter.sample. The sample for uniform numbers u in [0, 1)^2 by inversion (PBR 4th
-  // ed. section 2.3.1): along each axis s = F^-1(u), F the cumulative distribution of
+  // ed. section 2.3): along each axis s = F^-1(u), F the cumulative distribution of
   // |f1| / abs_area(),
   //   F(s) = 1/2 + sign(s) abs_integral(|s|) / abs_area(),
   // so |s| = inverse_abs_integral(|2u - 1|), negative for u < 1/2; and the weight

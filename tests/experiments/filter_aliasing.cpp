@@ -42,7 +42,7 @@ ZonePlateScores measure_zone_plate(PixelFilterType filter, int size, int spp, st
         signal_pass += signal * signal;
       }
     }
-  return ZonePlateScores{alias_sum / alias_n / 0.125, pass_sum / signal_pass};
+  return ZonePlateScores{alias_sum / alias_n / 0.125, pass_sum / signal_pass, image};
 }
 
 }  // namespace rt

@@ -7,6 +7,7 @@
 // and by the chart program benchmarks/filter_aliasing.cpp.
 #pragma once
 
+#include "common/image.h"
 #include "common/scene.h"
 
 #include <cstdint>
@@ -20,6 +21,7 @@ struct ZonePlateScores {
   // Mean of (I - 1/2)^2 over the pixels within r_N / 2, over that of the signal at their centres:
   // how much of the passband survives. 1 for an ideal filter; a blurring filter gives less.
   double passband = 0.0;
+  Image image;  // the render itself, for the handout's pictures
 };
 
 // Renders the zone plate with stage 1's pixel loop (a size x size image, spp samples per pixel,
