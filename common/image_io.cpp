@@ -133,17 +133,50 @@ std::vector<char> encode_exr(const Image& image, bool half) {
 }
 
 Image decode_exr(const std::string& bytes, const std::string& name) {
-  float* rgba = nullptr;
-  int width = 0, height = 0;
+  // Header first, then the image for it (tinyexr's one-call LoadEXRFromMemory leaks a few bytes on
+  // every file it refuses, which the sanitizers report).
+  const auto* memory = reinterpret_cast<const unsigned char*>(bytes.data());
+  EXRVersion version;
+  if (ParseEXRVersionFromMemory(&version, memory, bytes.size()) != TINYEXR_SUCCESS)
+    throw InputError(name + ": not an OpenEXR image (no OpenEXR version header)");
+  if (version.multipart || version.non_image || version.tiled)
+    throw InputError(name + ": a tiled, deep or multi-part OpenEXR image, which this reader does not take");
+  EXRHeader header;
+  InitEXRHeader(&header);
   const char* error = nullptr;
-  if (LoadEXRFromMemory(&rgba, &width, &height, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(),
-                        &error) != TINYEXR_SUCCESS)
+  if (ParseEXRHeaderFromMemory(&header, &version, memory, bytes.size(), &error) != TINYEXR_SUCCESS) {
+    FreeEXRHeader(&header);
     throw InputError(name + ": not a readable OpenEXR image (" + take_exr_error(error) + ")");
-  Image image(width, height);
-  for (size_t i = 0; i < image.pixel_count(); ++i)
-    image.pixels()[i] = Color(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]);
-  std::free(rgba);
-  return image;
+  }
+  int channel_of[3] = {-1, -1, -1};  // R, G, B
+  for (int c = 0; c < header.num_channels; ++c) {
+    if (header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF) header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+    for (int k = 0; k < 3; ++k)
+      if (std::string(header.channels[c].name) == std::string(1, "RGB"[k])) channel_of[k] = c;
+  }
+  EXRImage image;
+  InitEXRImage(&image);
+  const int loaded = LoadEXRImageFromMemory(&image, &header, memory, bytes.size(), &error);
+  auto release = [&] {
+    if (loaded == TINYEXR_SUCCESS) FreeEXRImage(&image);
+    FreeEXRHeader(&header);
+  };
+  if (loaded != TINYEXR_SUCCESS) {
+    release();
+    throw InputError(name + ": not a readable OpenEXR image (" + take_exr_error(error) + ")");
+  }
+  for (int k = 0; k < 3; ++k)
+    if (channel_of[k] < 0 || header.requested_pixel_types[channel_of[k]] != TINYEXR_PIXELTYPE_FLOAT) {
+      release();
+      throw InputError(name + ": the OpenEXR image has no float or half channel " + std::string(1, "RGB"[k]));
+    }
+  Image result(image.width, image.height);
+  for (size_t i = 0; i < result.pixel_count(); ++i) {
+    const auto channel = [&](int k) { return reinterpret_cast<const float*>(image.images[channel_of[k]])[i]; };
+    result.pixels()[i] = Color(channel(0), channel(1), channel(2));
+  }
+  release();
+  return result;
 }
 
 Image read_pfm(const fs::path& path) {

@@ -34,7 +34,8 @@ void write_image(const std::filesystem::path& path, const Image& image, const Im
 
 std::vector<char> encode_png(const Image& image, const DisplayTransform& display = {});
 std::vector<char> encode_exr(const Image& image, bool half);
-// Reads an RGB (or RGBA, alpha dropped) OpenEXR image from its bytes; `name` names it in messages.
+// Reads the R, G and B channels (float or half; any others ignored) of a scanline OpenEXR image from
+// its bytes; `name` names it in messages. For tests and tools: it trusts the file's size.
 Image decode_exr(const std::string& bytes, const std::string& name);
 std::vector<char> encode_pfm(const Image& image);
 // One channel ("Pf"), `values` row by row from the top: a sample-count image (common/sample_batch.h).
