@@ -51,7 +51,8 @@ struct ImplicitHit {
 //     nothing and marching starts close to the surface;
 //  2. sphere-trace: t += |g(t)|. From outside this never crosses the surface, from inside it
 //     never leaves it, so the first |g| below the tolerance is the nearest root;
-//  3. if a step does change the sign of g (a bound that is not exact), bisect the bracket;
+//  3. if a step does change the sign of g (rounding next to the surface; or an f that somewhere
+//     overestimates the distance, which breaks the bound), bisect the bracket;
 //  4. polish with Newton steps, t -= g / g', g' = grad f . d, kept while they shrink |g|.
 // A ray that grazes the surface makes sphere tracing crawl: a root found at step n counts only for
 // n < kMaxSphereTracingSteps (ImplicitHit::steps = n; the first |g| is step 0), so a ray that
