@@ -181,6 +181,26 @@ TEST(Torus, AnOverestimatingBoundIsBisectedToTheNearestRoot) {
   }
 }
 
+// f = (1 - x)^3 / 6: the half-space x > 1 with a triple root at its face, where g' = 0 too, so
+// Newton's method only crawls there (each step cuts the error by a third). From x = -2 the first
+// step, 27/6 = 4.5, lands at x = 2.5, inside: only bisecting that bracket down to the tolerance
+// finds the root; Newton's four polishing steps from the bracket's middle (0.75 away) would stop
+// about 0.15 short of it.
+class CubicWall final : public ImplicitSurface {
+ public:
+  float distance(Vec3 p) const override { return (1.0f - p.x) * (1.0f - p.x) * (1.0f - p.x) / 6.0f; }
+  Vec3 gradient(Vec3 p) const override { return Vec3(-0.5f * (1.0f - p.x) * (1.0f - p.x), 0.0f, 0.0f); }
+  Sphere bounding_sphere() const override { return Sphere{Vec3(1.0f, 0.0f, 0.0f), 3.0f}; }
+};
+
+TEST(Torus, ABracketIsBisectedWhereNewtonAloneWouldCrawl) {
+  const CubicWall surface;
+  const Ray ray{Vec3(-5.0f, 0.0f, 0.0f), Vec3(1.0f, 0.0f, 0.0f)};  // enters the bound at x = -2, t = 3
+  const auto hit = intersect_implicit(surface, ray, Interval::positive());
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->t, 6.0f, 1e-3f) << "the face x = 1";
+}
+
 // min(y, 1/64): a valid bound on the distance to the plane y = 0 whose every step above y = 1/64
 // is exactly 1/64, so a ray straight down from y = n / 64 reaches the plane at step n exactly.
 class StaircasePlane final : public ImplicitSurface {
