@@ -140,9 +140,10 @@ FilterSample PixelFilter::sample(Vec2 u) const {
     return ui < 0.5f ? -magnitude : magnitude;
   };
   const double sx = sample_axis(u.x), sy = sample_axis(u.y);
+  const Vec2 film_offset(0.5f + float(sx), 0.5f + float(sy));
+  if (!has_negative_lobes()) return FilterSample{film_offset, 1.0f};  // p is proportional to f: w = 1
   const double ratio = abs_area_ / signed_area_;
-  const double weight = std::copysign(ratio * ratio, profile(sx) * profile(sy));
-  return FilterSample{Vec2(0.5f + float(sx), 0.5f + float(sy)), has_negative_lobes() ? float(weight) : 1.0f};
+  return FilterSample{film_offset, float(std::copysign(ratio * ratio, profile(sx) * profile(sy)))};
   // PLACEHOLDER
   // report_unfinished_task("stage1.filter.sample");
   // return FilterSample{u, 1.0f};  // the box filter, whatever the type
