@@ -18,6 +18,9 @@ struct Hit {
   // Bound on the rounding error of `point`, per coordinate: the true surface point lies in the box
   // point +- point_error. Stage 2 fills it in and offsets secondary rays by it; zero means unknown.
   Vec3 point_error{0.0f};
+  // Texture coordinates of the point (common/scene.h, ImageTexture, says which way they run):
+  // interpolated from a mesh's corners, a sphere's (theta, phi), a plane's or disk's own frame.
+  Vec2 uv{0.0f};
   bool front_face = true;
   int material = -1;
   int primitive = -1;  // index of the shape in its scene, for debug output and tests

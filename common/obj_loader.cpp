@@ -41,12 +41,12 @@ std::vector<std::string_view> split_words(std::string_view line) {
   return words;
 }
 
-// Reads the three coordinates of a 'v' or 'vn' statement; returns the offending word, if any. Read
-// in double, so that a number too small for float (1e-50) becomes 0 as in any OBJ reader, while one
-// too large for it (1e40), like nan and inf, is refused.
-std::optional<std::string> read_three_numbers(const std::vector<std::string_view>& words, Vec3& out) {
-  if (words.size() < 4) return std::string("(missing)");
-  for (int i = 0; i < 3; ++i) {
+// Reads the first `count` coordinates of a 'v', 'vn' or 'vt' statement; returns the offending word,
+// if any. Read in double, so that a number too small for float (1e-50) becomes 0 as in any OBJ
+// reader, while one too large for it (1e40), like nan and inf, is refused.
+std::optional<std::string> read_numbers(const std::vector<std::string_view>& words, int count, Vec3& out) {
+  if (words.size() < size_t(count) + 1) return std::string("(missing)");
+  for (int i = 0; i < count; ++i) {
     const std::string word(words[size_t(i) + 1]);
     char* end = nullptr;
     const double value = std::strtod(word.c_str(), &end);
@@ -122,15 +122,17 @@ ObjLines scan_lines(const std::string& text, const std::string& file) {
     auto fail = [&](const std::string& problem) { throw InputError(at + problem); };
     Vec3 v;
     if (words[0] == "v") {
-      if (const auto bad = read_three_numbers(words, v))
+      if (const auto bad = read_numbers(words, 3, v))
         fail("vertex needs three finite coordinates, got '" + *bad + "'");
       ++lines.vertex_count;
     } else if (words[0] == "vn") {
-      if (const auto bad = read_three_numbers(words, v))
+      if (const auto bad = read_numbers(words, 3, v))
         fail("normal needs three finite coordinates, got '" + *bad + "'");
       if (!(glm::length(glm::dvec3(v)) > 0.0)) fail("normal has zero length");
       ++lines.normal_count;
     } else if (words[0] == "vt") {
+      if (const auto bad = read_numbers(words, 2, v))
+        fail("texture coordinate needs two finite numbers, got '" + *bad + "'");
       ++lines.texture_count;
     } else if (words[0] == "f") {
       if (words.size() < 4) fail("a face needs at least three corners");
@@ -166,8 +168,9 @@ TriangleMesh parse_obj(const std::string& text, const std::string& file) {
     throw InputError(file + ": " + (error.empty() ? "not a valid OBJ file" : error.substr(0, error.find('\n'))));
   }
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
-  if (attrib.vertices.size() != 3 * lines.vertex_count || attrib.normals.size() != 3 * lines.normal_count)
-    throw InputError(file + ": vertex or normal statements could not be read");
+  if (attrib.vertices.size() != 3 * lines.vertex_count || attrib.normals.size() != 3 * lines.normal_count ||
+      attrib.texcoords.size() != 2 * lines.texture_count)
+    throw InputError(file + ": vertex, normal or texture statements could not be read");
 
   TriangleMesh mesh;
   for (size_t i = 0; i < lines.vertex_count; ++i)
@@ -175,6 +178,7 @@ TriangleMesh parse_obj(const std::string& text, const std::string& file) {
   for (size_t i = 0; i < lines.normal_count; ++i)
     mesh.normals.push_back(glm::normalize(
         Vec3(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2])));
+  for (size_t i = 0; i < lines.texture_count; ++i) mesh.uvs.emplace_back(attrib.texcoords[2 * i], attrib.texcoords[2 * i + 1]);
 
   size_t face = 0;
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
@@ -183,7 +187,7 @@ TriangleMesh parse_obj(const std::string& text, const std::string& file) {
       if (face >= lines.face_lines.size()) throw InputError(file + ": face statements could not be read");
       const std::string at = file + ":" + std::to_string(lines.face_lines[face]) + ": ";
       std::vector<std::uint32_t> positions;
-      std::vector<std::int32_t> normals;
+      std::vector<std::int32_t> normals, uvs;
       for (unsigned int k = 0; k < corner_count; ++k, ++corner) {
         const tinyobj::index_t index = shape.mesh.indices[corner];
         if (index.vertex_index < 0 || size_t(index.vertex_index) >= lines.vertex_count)
@@ -192,14 +196,24 @@ TriangleMesh parse_obj(const std::string& text, const std::string& file) {
         if (index.normal_index >= 0 && size_t(index.normal_index) >= lines.normal_count)
           throw InputError(at + "normal index " + std::to_string(index.normal_index + 1) +
                            " is out of range (the file has " + std::to_string(lines.normal_count) + " normals)");
+        if (index.texcoord_index >= 0 && size_t(index.texcoord_index) >= lines.texture_count)
+          throw InputError(at + "texture index " + std::to_string(index.texcoord_index + 1) +
+                           " is out of range (the file has " + std::to_string(lines.texture_count) +
+                           " texture coordinates)");
         positions.push_back(std::uint32_t(index.vertex_index));
         normals.push_back(index.normal_index);
+        uvs.push_back(index.texcoord_index);
       }
-      const bool all_normals = std::all_of(normals.begin(), normals.end(), [](std::int32_t n) { return n >= 0; });
+      auto all_given = [](const std::vector<std::int32_t>& indices) {
+        return std::all_of(indices.begin(), indices.end(), [](std::int32_t i) { return i >= 0; });
+      };
+      const bool all_normals = all_given(normals), all_uvs = all_given(uvs);
       for (size_t k = 1; k + 1 < positions.size(); ++k) {
         mesh.triangles.push_back({positions[0], positions[k], positions[k + 1]});
         if (all_normals) mesh.triangle_normals.push_back({normals[0], normals[k], normals[k + 1]});
         else mesh.triangle_normals.push_back({-1, -1, -1});
+        if (all_uvs) mesh.triangle_uvs.push_back({uvs[0], uvs[k], uvs[k + 1]});
+        else mesh.triangle_uvs.push_back({-1, -1, -1});
       }
       ++face;
     }
@@ -207,6 +221,7 @@ TriangleMesh parse_obj(const std::string& text, const std::string& file) {
   if (face != lines.face_lines.size()) throw InputError(file + ": face statements could not be read");
   if (mesh.triangles.empty()) throw InputError(file + ": the mesh has no faces");
   if (mesh.normals.empty()) mesh.triangle_normals.clear();
+  if (mesh.uvs.empty()) mesh.triangle_uvs.clear();
   return mesh;
 }
 

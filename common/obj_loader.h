@@ -1,5 +1,6 @@
 // Reading triangle meshes from Wavefront OBJ files through tinyobjloader. Positions, vertex
-// normals and faces are used; texture coordinates, materials and groups are ignored.
+// normals, texture coordinates (u, v; a third w is ignored) and faces are used; materials and
+// groups are ignored.
 #pragma once
 
 #include "common/triangle_mesh.h"

@@ -97,7 +97,7 @@ void write_render(const char* program, const CommonOptions& options, const std::
   }
   std::printf("%s: wrote %s%s (%s) in %.2f s, %ssamples/s\n", program, batch ? "sample batch " : "",
               printable(options.out).c_str(), describe_part(settings).c_str(), seconds,
-              format_si(double(asked) / seconds).c_str());
+              format_si(double(done) / seconds).c_str());
 }
 
 }  // namespace rt

@@ -94,7 +94,14 @@ std::string scene_fingerprint(const fs::path& scene_file, const SceneDescription
       add_all(mesh->mesh->normals);
       add_all(mesh->mesh->triangles);
       add_all(mesh->mesh->triangle_normals);
+      add_all(mesh->mesh->uvs);
+      add_all(mesh->mesh->triangle_uvs);
     }
+  // The images the scene file names: a texture or an environment changed on disk changes the render.
+  for (const Material& material : scene.materials)
+    for (const auto* texture : {material.albedo_texture.get(), material.specular_texture.get()})
+      if (texture) add_all(texture->texels.pixels());
+  if (scene.environment && scene.environment->image) add_all(scene.environment->image->pixels());
   return hash.hex();
 }
 

@@ -70,6 +70,21 @@ struct Checker {
   float size;
 };
 
+// An image texture as a scene file names it (docs/scene-format.md): its texels, already linear
+// (common/texture_image.h), and how stage 4 looks them up (04-radiometry/texture.h). Texture
+// coordinates (u, v) run right and UP: (0, 0) is the image's bottom-left corner, (1, 1) its
+// top-right; `repeat` tiles the plane with the image, `clamp` extends its edge texels.
+enum class TextureWrap { repeat, clamp };
+enum class TextureFilter { nearest, bilinear };
+struct ImageTexture {
+  std::string file;  // as resolved from the scene file, for messages
+  Image texels;
+  TextureWrap wrap = TextureWrap::repeat;
+  TextureFilter filter = TextureFilter::bilinear;
+  Color mean{0.0f};     // the texels' average: what stages 1-3 shade with, which look no texture up
+  Color largest{0.0f};  // the largest texel value per channel, for the loader's energy checks
+};
+
 enum class MaterialType {
   diffuse,     // Lambert + Blinn-Phong, shaded from the lights (stage 1 on)
   mirror,      // perfect specular reflection (stage 2 on)
@@ -87,6 +102,9 @@ struct Material {
   float roughness = 0.2f;  // microfacet: GGX alpha in [0.001, 1]
   Color emission{0.0f};    // emitted radiance Le, from the front face only
   std::optional<Checker> checker;
+  // Image textures in place of `albedo` and `specular` (stage 4 on). Each constant above then
+  // holds its texture's mean, which stages 1-3, blind to textures, shade with.
+  std::shared_ptr<const ImageTexture> albedo_texture, specular_texture;
   Color reflectance{1.0f}; // mirror: fraction reflected per channel
   float ior = 1.5f;        // dielectric: index of refraction inside (outside is 1, vacuum/air)
 
@@ -117,11 +135,14 @@ struct Torus {
 };
 struct Triangle {
   std::array<Vec3, 3> vertices;  // outward normal (v1 - v0) x (v2 - v0)
+  std::array<Vec2, 3> uvs{Vec2(0.0f, 0.0f), Vec2(1.0f, 0.0f), Vec2(0.0f, 1.0f)};  // texture coordinates
 };
 // Four corners in order. Meshed as (v0, v1, v2) + (v0, v2, v3), which is exact for planar
 // parallelograms and DEFINES the surface otherwise (the Cornell box's red wall is not planar).
 struct Quad {
   std::array<Vec3, 4> vertices;
+  // Texture coordinates of the corners: by default the unit square, so an image covers the quad.
+  std::array<Vec2, 4> uvs{Vec2(0.0f, 0.0f), Vec2(1.0f, 0.0f), Vec2(1.0f, 1.0f), Vec2(0.0f, 1.0f)};
 };
 
 // A triangle mesh from an OBJ file, placed in the world by `transform`. The mesh is shared, not
@@ -161,11 +182,22 @@ struct PointLight {
   Color intensity;  // radiant intensity I, W/sr per channel
 };
 
+// Light from infinitely far away, arriving from every direction (stage 4's environment emitter):
+// a latitude-longitude image (04-radiometry/environment_light.h has its mapping) times `scale`, or
+// the constant radiance `scale` when there is no image. Turned by `rotation_degrees` about +y.
+struct Environment {
+  std::string file;                     // empty for a constant environment
+  std::shared_ptr<const Image> image;   // linear radiance, row 0 at the top (straight up)
+  Color scale{1.0f};
+  float rotation_degrees = 0.0f;
+};
+
 struct SceneDescription {
   std::string source;  // the file it came from, for messages
   RenderSettings render;
   CameraSpec camera;
-  Color background{0.0f};  // radiance of rays that escape
+  Color background{0.0f};  // radiance of rays that escape (no scene has both it and an environment)
+  std::optional<Environment> environment;
   std::vector<Material> materials;
   std::vector<Shape> shapes;
   std::vector<PointLight> lights;

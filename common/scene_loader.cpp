@@ -5,6 +5,7 @@
 #include "common/json_node.h"
 #include "common/obj_loader.h"
 #include "common/scene.h"
+#include "common/texture_image.h"
 
 #include <cmath>
 #include <limits>
@@ -52,19 +53,87 @@ CameraSpec parse_camera(const JsonNode& n) {
   return c;
 }
 
+// Image files named by several materials (or by a material and the environment) are read once per
+// encoding. Paths are relative to the scene file's folder.
+class ImageCache {
+ public:
+  explicit ImageCache(std::filesystem::path folder) : folder_(std::move(folder)) {}
+  std::shared_ptr<const Image> load(const JsonNode& file, TexelEncoding encoding, std::string& resolved) {
+    resolved = (folder_ / file.as_string()).lexically_normal().string();
+    std::shared_ptr<const Image>& image = images_[{resolved, encoding}];
+    if (!image) {
+      try {
+        image = std::make_shared<const Image>(read_texture_image(resolved, encoding));
+      } catch (const InputError& e) {
+        file.fail(e.what());  // "scene.json: /materials/wood/albedo/file: wood.png: problem"
+      }
+    }
+    return image;
+  }
+
+ private:
+  std::filesystem::path folder_;
+  std::map<std::pair<std::string, TexelEncoding>, std::shared_ptr<const Image>> images_;
+};
+
+// "albedo": {"file": "wood.png", "wrap": "repeat" | "clamp", "filter": "bilinear" | "nearest",
+// "encoding": "srgb" | "linear"}: an image texture for a colour key (docs/scene-format.md).
+// Its texels must lie in [0, hi], as the constant colour's channels must.
+std::shared_ptr<const ImageTexture> parse_texture(const JsonNode& n, ImageCache& images, float hi, const char* what) {
+  n.expect_object({"file", "wrap", "filter", "encoding"});
+  ImageTexture texture;
+  TexelEncoding encoding = TexelEncoding::srgb;
+  if (n.has("encoding")) {
+    const std::string e = n["encoding"].as_string();
+    if (e != "srgb" && e != "linear") n["encoding"].fail("unknown encoding '" + e + "' (known: srgb, linear)");
+    encoding = e == "srgb" ? TexelEncoding::srgb : TexelEncoding::linear;
+  }
+  if (n.has("wrap")) {
+    const std::string w = n["wrap"].as_string();
+    if (w != "repeat" && w != "clamp") n["wrap"].fail("unknown wrap mode '" + w + "' (known: repeat, clamp)");
+    texture.wrap = w == "repeat" ? TextureWrap::repeat : TextureWrap::clamp;
+  }
+  if (n.has("filter")) {
+    const std::string f = n["filter"].as_string();
+    if (f != "bilinear" && f != "nearest") n["filter"].fail("unknown texture filter '" + f + "' (known: bilinear, nearest)");
+    texture.filter = f == "bilinear" ? TextureFilter::bilinear : TextureFilter::nearest;
+  }
+  texture.texels = *images.load(n["file"], encoding, texture.file);
+  glm::dvec3 sum(0.0);
+  for (const Color& c : texture.texels.pixels()) {
+    sum += glm::dvec3(c);
+    texture.largest = glm::max(texture.largest, c);
+  }
+  texture.mean = Color(sum / double(texture.texels.pixel_count()));
+  if (max_component(texture.largest) > hi)
+    n["file"].fail(texture.file + ": a texel exceeds " + std::to_string(int(hi)) + ", the most a " + what + " may be");
+  return std::make_shared<const ImageTexture>(std::move(texture));
+}
+
+// A colour key that may instead name an image texture: sets the constant to the texture's mean.
+void parse_color_or_texture(const JsonNode& n, ImageCache& images, const char* what, Color& constant,
+                            std::shared_ptr<const ImageTexture>& texture) {
+  if (n.value().is_object()) {
+    texture = parse_texture(n, images, 1.0f, what);
+    constant = texture->mean;
+  } else {
+    constant = n.as_color(1.0f, what);
+  }
+}
+
 Checker parse_checker(const JsonNode& c) {
   c.expect_object({"albedo", "size"});
   return Checker{c["albedo"].as_color(1.0f, "albedo (more than 1 creates energy)"), c["size"].as_size("checker size")};
 }
 
-Material parse_material(const JsonNode& n, const std::string& name) {
+Material parse_material(const JsonNode& n, const std::string& name, ImageCache& images) {
   n.expect_object();
   Material m;
   m.name = name;
   const std::string type = n.has("type") ? n["type"].as_string() : "diffuse";
   if (type == "diffuse") {
     n.expect_object({"type", "albedo", "specular", "shininess", "emission", "checker"});
-    if (n.has("albedo")) m.albedo = n["albedo"].as_color(1.0f, "albedo (more than 1 creates energy)");
+    if (n.has("albedo")) parse_color_or_texture(n["albedo"], images, "albedo (more than 1 creates energy)", m.albedo, m.albedo_texture);
     if (n.has("specular")) m.specular = n["specular"].as_color(1.0f, "specular reflectance");
     if (n.has("shininess")) m.shininess = n["shininess"].as_float(0.0f, 1e6f, "shininess");
     if (n.has("checker")) m.checker = parse_checker(n["checker"]);
@@ -80,27 +149,44 @@ Material parse_material(const JsonNode& n, const std::string& name) {
     n.expect_object({"type", "albedo", "specular", "shininess", "emission", "checker"});
     m.type = MaterialType::phong;
     m.specular = Color(0.2f);
-    if (n.has("albedo")) m.albedo = n["albedo"].as_color(1.0f, "albedo (more than 1 creates energy)");
-    if (n.has("specular")) m.specular = n["specular"].as_color(1.0f, "specular reflectance");
+    if (n.has("albedo")) parse_color_or_texture(n["albedo"], images, "albedo (more than 1 creates energy)", m.albedo, m.albedo_texture);
+    if (n.has("specular")) parse_color_or_texture(n["specular"], images, "specular reflectance", m.specular, m.specular_texture);
     if (n.has("shininess")) m.shininess = n["shininess"].as_float(0.0f, 1e6f, "shininess");
     if (n.has("checker")) m.checker = parse_checker(n["checker"]);
     // Lambert reflects at most rho_d and the normalized lobe at most rho_s, so their sum must not
-    // exceed 1 (Lafortune & Willems 1994), with either albedo of a checker.
-    const Color largest_albedo = m.checker ? glm::max(m.albedo, m.checker->albedo) : m.albedo;
-    if (max_component(largest_albedo + m.specular) > 1.0f)
+    // exceed 1 (Lafortune & Willems 1994), with either albedo of a checker and any texel of a
+    // texture (the largest of each, a bound even where they are not at the same point).
+    Color largest_albedo = m.checker ? glm::max(m.albedo, m.checker->albedo) : m.albedo;
+    if (m.albedo_texture) largest_albedo = glm::max(largest_albedo, m.albedo_texture->largest);
+    const Color largest_specular = m.specular_texture ? m.specular_texture->largest : m.specular;
+    if (max_component(largest_albedo + largest_specular) > 1.0f)
       n.fail("albedo + specular exceeds 1 in some channel: the surface would reflect more than it receives");
   } else if (type == "microfacet") {
     n.expect_object({"type", "specular", "roughness", "emission"});
     m.type = MaterialType::microfacet;
     m.specular = Color(0.95f, 0.64f, 0.54f);  // copper's normal-incidence reflectance
-    if (n.has("specular")) m.specular = n["specular"].as_color(1.0f, "normal-incidence reflectance F0");
+    if (n.has("specular"))
+      parse_color_or_texture(n["specular"], images, "normal-incidence reflectance F0", m.specular, m.specular_texture);
     if (n.has("roughness")) m.roughness = n["roughness"].as_float(0.001f, 1.0f, "roughness (GGX alpha)");
   } else {
     n["type"].fail("unknown material type '" + type +
                    "' (known: diffuse, mirror, dielectric, phong, microfacet)");
   }
   if (n.has("emission")) m.emission = n["emission"].as_color(3.0e38f, "emission");
+  if (m.checker && m.albedo_texture) n["checker"].fail("a material has a checker or an albedo texture, not both");
   return m;
+}
+
+template <size_t N>
+std::array<Vec2, N> parse_uvs(const JsonNode& n) {
+  if (n.expect_array() != N) n.fail("expected " + std::to_string(N) + " texture coordinates, one per vertex");
+  std::array<Vec2, N> uv;
+  for (size_t i = 0; i < N; ++i) {
+    const JsonNode c = n.at(i);
+    if (c.expect_array() != 2) c.fail("expected an array of 2 numbers (u, v)");
+    uv[i] = Vec2(c.at(0).as_float(-1e6f, 1e6f, "texture coordinate"), c.at(1).as_float(-1e6f, 1e6f, "texture coordinate"));
+  }
+  return uv;
 }
 
 template <size_t N>
@@ -204,12 +290,16 @@ Geometry parse_geometry(const JsonNode& n, const std::string& type, MeshCache& m
     return t;
   }
   if (type == "triangle") {
-    n.expect_object({"type", "name", "material", "vertices"});
-    return Triangle{parse_vertices<3>(n["vertices"])};
+    n.expect_object({"type", "name", "material", "vertices", "uvs"});
+    Triangle triangle{parse_vertices<3>(n["vertices"])};
+    if (n.has("uvs")) triangle.uvs = parse_uvs<3>(n["uvs"]);
+    return triangle;
   }
   if (type == "quad") {
-    n.expect_object({"type", "name", "material", "vertices"});
-    return Quad{parse_vertices<4>(n["vertices"])};
+    n.expect_object({"type", "name", "material", "vertices", "uvs"});
+    Quad quad{parse_vertices<4>(n["vertices"])};
+    if (n.has("uvs")) quad.uvs = parse_uvs<4>(n["uvs"]);
+    return quad;
   }
   if (type == "mesh") {
     n.expect_object({"type", "name", "material", "file", "transform"});
@@ -222,6 +312,27 @@ Geometry parse_geometry(const JsonNode& n, const std::string& type, MeshCache& m
     return disk;
   }
   n["type"].fail("unknown shape type '" + type + "' (known: sphere, plane, torus, triangle, quad, mesh, disk)");
+}
+
+// "environment": {"radiance": [r, g, b]} (constant) or {"file": "sky.hdr", "scale": s, "rotation":
+// degrees} (docs/scene-format.md).
+Environment parse_environment(const JsonNode& n, ImageCache& images) {
+  n.expect_object({"file", "radiance", "scale", "rotation"});
+  Environment e;
+  if (n.has("file") == n.has("radiance")) n.fail("give either 'file' (an image) or 'radiance' (a constant colour)");
+  if (n.has("radiance")) {
+    if (n.has("scale")) n["scale"].fail("'scale' multiplies an image; a constant environment gives its 'radiance'");
+    e.scale = n["radiance"].as_color(1e30f, "environment radiance");
+  } else {
+    e.image = images.load(n["file"], TexelEncoding::srgb, e.file);
+    if (n.has("scale")) e.scale = Color(n["scale"].as_float(0.0f, 1e30f, "environment scale"));
+    float brightest = 0.0f;
+    for (const Color& c : e.image->pixels()) brightest = std::max(brightest, max_component(c));
+    if (!(brightest * max_component(e.scale) <= 1e30f))
+      n.fail("the environment's radiance (texels times scale) exceeds 1e30");
+  }
+  if (n.has("rotation")) e.rotation_degrees = n["rotation"].as_float(-3600.0f, 3600.0f, "rotation (degrees about +y)");
+  return e;
 }
 
 PointLight parse_light(const JsonNode& n) {
@@ -249,13 +360,20 @@ SceneDescription parse_scene(const std::string& text, const std::string& source)
     throw InputError(printable(source + ": malformed JSON: " + what));
   }
   const JsonNode root(json, "", source);
-  root.expect_object({"render", "camera", "background", "materials", "shapes", "lights"});
+  root.expect_object({"render", "camera", "background", "environment", "materials", "shapes", "lights"});
 
   SceneDescription scene;
   scene.source = source;
   if (root.has("render")) scene.render = parse_render(root["render"]);
   scene.camera = parse_camera(root["camera"]);
   if (root.has("background")) scene.background = root["background"].as_color(3.0e38f, "background radiance");
+  const std::filesystem::path folder = std::filesystem::path(source).parent_path();
+  ImageCache images(folder);
+  if (root.has("environment")) {
+    if (root.has("background"))
+      root["environment"].fail("a scene has a background or an environment, not both (the environment is what escaping rays see)");
+    scene.environment = parse_environment(root["environment"], images);
+  }
 
   std::map<std::string, int> material_index;
   const JsonNode materials = root["materials"];
@@ -263,10 +381,10 @@ SceneDescription parse_scene(const std::string& text, const std::string& source)
   for (const auto& item : json["materials"].items()) {
     const JsonNode m(item.value(), "/materials/" + item.key(), scene.source);
     material_index[item.key()] = int(scene.materials.size());
-    scene.materials.push_back(parse_material(m, item.key()));
+    scene.materials.push_back(parse_material(m, item.key(), images));
   }
 
-  MeshCache meshes(std::filesystem::path(source).parent_path());
+  MeshCache meshes(folder);
   const JsonNode shapes = root["shapes"];
   const size_t shape_count = shapes.expect_array();
   for (size_t i = 0; i < shape_count; ++i) {

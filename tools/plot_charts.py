@@ -192,6 +192,47 @@ def direct_error_vs_time(charts):
     plt.close(fig)
 
 
+def environment_sampling(charts):
+    rows = read_rows(charts / "stage4-environment.csv")
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    for strategy, (style, colour) in {"importance": ("o-", "tab:red"), "uniform": ("s-", "tab:grey")}.items():
+        mine = [r for r in rows if r["strategy"] == strategy]
+        ax.loglog([int(r["spp"]) for r in mine], [float(r["rmse"]) for r in mine], style, color=colour,
+                  label=f"{strategy} ({'luminance x sin theta table' if strategy == 'importance' else 'over the sphere'})",
+                  ms=4)
+    ax.set(xlabel="samples per pixel", ylabel="RMSE against the converged reference",
+           title="Stage 4: environment.json, light sampling of the sky and sun")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(charts / "stage4-environment.png", dpi=110)
+    plt.close(fig)
+
+
+def adaptive_error_vs_time(charts):
+    rows = read_rows(charts / "stage5-adaptive.csv")
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    fig, axes = plt.subplots(1, len(scenes), figsize=(10, 4.4))
+    for ax, scene in zip(axes, scenes):
+        for method, (style, colour) in {"uniform": ("s-", "tab:grey"), "adaptive": ("o-", "tab:red")}.items():
+            mine = [r for r in rows if r["scene"] == scene and r["method"] == method]
+            ax.loglog([float(r["seconds"]) for r in mine], [float(r["rmse"]) for r in mine], style, color=colour,
+                      label=method + (" (tolerance 0.4 to 0.025, at most 1024 spp)" if method == "adaptive"
+                                      else " (4 to 1024 spp)"), ms=4)
+            if method == "adaptive":
+                for r in mine:
+                    ax.annotate(r["parameter"], (float(r["seconds"]), float(r["rmse"])), fontsize=7,
+                                textcoords="offset points", xytext=(4, 4))
+        ax.set(xlabel="wall time on 2 cores (s)", title=scene)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    axes[0].set_ylabel("RMSE against the reference")
+    fig.suptitle("Stage 5: adaptive sampling against the same paths in every pixel (MIS, Sobol)")
+    fig.tight_layout()
+    fig.savefig(charts / "stage5-adaptive.png", dpi=110)
+    plt.close(fig)
+
+
 PATH_STYLE = {("naive", "sobol"): ("v-", "tab:grey"),
               ("rr", "sobol"): ("^-", "tab:purple"),
               ("nee", "sobol"): ("s-", "tab:blue"),
@@ -287,7 +328,9 @@ def main(root):
     accel_build_vs_trace(charts)
     accel_memory_vs_speed(charts)
     direct_error_vs_time(charts)
+    environment_sampling(charts)
     path_error_vs_time(charts)
+    adaptive_error_vs_time(charts)
     path_convergence(charts)
     renders = pathlib.Path(root) / "build" / "stage4-renders"
     if renders.exists():

@@ -23,6 +23,7 @@ TriangleMesh place_mesh(const TriangleMesh& mesh, const Transform& transform) {
   if (glm::determinant(transform.linear()) < 0.0f) {
     for (auto& corners : world.triangles) std::swap(corners[1], corners[2]);
     for (auto& corners : world.triangle_normals) std::swap(corners[1], corners[2]);
+    for (auto& corners : world.triangle_uvs) std::swap(corners[1], corners[2]);
   }
   return world;
 }
@@ -31,6 +32,8 @@ TriangleMesh mesh_from_triangle(const Triangle& triangle) {
   TriangleMesh mesh;
   mesh.positions.assign(triangle.vertices.begin(), triangle.vertices.end());
   mesh.triangles = {{0, 1, 2}};
+  mesh.uvs.assign(triangle.uvs.begin(), triangle.uvs.end());
+  mesh.triangle_uvs = {{0, 1, 2}};
   return mesh;
 }
 
@@ -38,6 +41,8 @@ TriangleMesh mesh_from_quad(const Quad& quad) {
   TriangleMesh mesh;
   mesh.positions.assign(quad.vertices.begin(), quad.vertices.end());
   mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  mesh.uvs.assign(quad.uvs.begin(), quad.uvs.end());
+  mesh.triangle_uvs = {{0, 1, 2}, {0, 2, 3}};
   return mesh;
 }
 

@@ -1,11 +1,13 @@
 // Stage 2: spheres as a primitive kind (the contract: 02-whitted/primitives.h). The test is stage
 // 1's numerically stable one; the hit point is projected back onto the sphere with its error bound
-// (02-whitted/ray_offset.h), so that secondary rays leave from the right side.
+// (02-whitted/ray_offset.h), so that secondary rays leave from the right side. Its texture
+// coordinates are the latitude-longitude map's (common/spherical.h).
 #pragma once
 
 #include "01-ray-casting/sphere_intersection.h"
 #include "02-whitted/primitives.h"
 #include "02-whitted/ray_offset.h"
+#include "common/spherical.h"
 
 namespace rt {
 
@@ -25,8 +27,10 @@ struct SphereKind : PlacedGeometryKind<Sphere> {
   static Hit hit_record(const Store& store, const PrimitiveHit& found, const Ray& ray) {
     const Placed<Sphere>& placed = store[found.index];
     const SurfacePoint surface = sphere_point(ray.at(found.t), placed.geometry);
-    return make_hit(ray, found.t, surface.point, surface.error, sphere_normal(placed.geometry, surface.point),
-                    placed.material, placed.shape);
+    const Vec3 outward = sphere_normal(placed.geometry, surface.point);
+    Hit hit = make_hit(ray, found.t, surface.point, surface.error, outward, placed.material, placed.shape);
+    hit.uv = latlong_uv(outward);  // the sphere's (theta, phi), common/spherical.h
+    return hit;
   }
 };
 

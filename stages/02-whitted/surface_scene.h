@@ -10,6 +10,7 @@
 #include "02-whitted/ray_offset.h"
 #include "02-whitted/triangle_kind.h"
 #include "common/error.h"
+#include "common/frame.h"
 
 #include <string>
 
@@ -78,7 +79,13 @@ std::optional<Hit> SurfaceScene<Set>::closest_hit(const Ray& ray, Interval range
     }
   if (plane) {
     const SurfacePoint surface = plane_point(ray.at(plane_t), plane->geometry);
-    return make_hit(ray, plane_t, surface.point, surface.error, plane->geometry.normal, plane->material, plane->shape);
+    Hit hit = make_hit(ray, plane_t, surface.point, surface.error, plane->geometry.normal, plane->material, plane->shape);
+    // Texture coordinates in scene units along the axes of the normal's frame: a repeating
+    // texture tiles the plane with squares of side 1.
+    const Frame frame = Frame::from_normal(plane->geometry.normal);
+    const Vec3 d = surface.point - plane->geometry.point;
+    hit.uv = Vec2(glm::dot(d, frame.s), glm::dot(d, frame.t));
+    return hit;
   }
   if (!found) return std::nullopt;
   // The record is built straight into the optional that is returned. Built apart and then copied

@@ -53,6 +53,7 @@ Hit TriangleKind::hit_record(const Store& store, const PrimitiveHit& found, cons
   // Hit hit = make_hit(ray, found.t, ray.at(found.t), Vec3(0.0f), glm::normalize(glm::cross(v1 - v0, v2 - v0)),
   //                    placed.material, placed.shape);
   // END TASK
+  hit.uv = placed.geometry.uv_at(triangle, found.b1, found.b2);
   hit.triangle = int(triangle);
   return hit;
 }

@@ -14,10 +14,11 @@ ShadingPoint make_shading_point(const LightingScene& scene, const Hit& hit, Vec3
 namespace {
 
 // Le arriving at the shading point along the world direction wi: the front-face emission of the
-// first surface a ray in that direction hits, black if it escapes (stage 4 is direct light only).
+// first surface a ray in that direction hits, or the environment's radiance if it escapes (stage 4
+// is direct light only).
 [[maybe_unused]] Color emitted_along(const LightingScene& scene, const ShadingPoint& at, Vec3 wi, const OffsetPolicy& offset) {
   const std::optional<Hit> hit = scene.closest_hit(spawn_ray(at.hit, wi, offset), Interval::positive());
-  return hit ? scene.emitted(*hit) : Color(0.0f);
+  return hit ? scene.emitted(*hit) : scene.environment_radiance(wi);
 }
 
 }  // namespace
@@ -78,6 +79,18 @@ DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingP
   if (scene.emitter_distribution().empty()) return {};
   // BEGIN TASK stage4.direct.light_sampling
   const DiscreteDistribution::Choice choice = scene.emitter_distribution().sample(u_choice);
+  if (choice.index == scene.environment_index()) {
+    // The environment: a direction, and a shadow ray that must escape the scene to see it.
+    const std::optional<EnvironmentSample> s = scene.environment()->sample(u);
+    if (!s) return {};
+    DirectLightSample result;
+    result.wi = at.frame.to_local(s->wi);
+    result.pdf = choice.pmf * s->pdf;
+    const Color f = at.bsdf.eval(at.wo, result.wi);
+    if (f == Color(0.0f) || scene.occluded(spawn_ray(at.hit, s->wi, offset), Interval::positive())) return result;
+    result.value = f * s->radiance * (result.wi.z / result.pdf);
+    return result;
+  }
   const AreaEmitter& emitter = scene.emitters()[size_t(choice.index)];
   const EmitterSample s = emitter.sample(at.hit.point, u);
   if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return {};
@@ -100,7 +113,7 @@ DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingP
 
 Color direct_radiance(const LightingScene& scene, const Ray& ray, const DirectOptions& options, Sampler& rng, int depth) {
   const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
-  if (!hit) return scene.background();
+  if (!hit) return scene.escaped_radiance(ray.direction);
   const Color emitted = scene.emitted(*hit);
   const ShadingPoint at = make_shading_point(scene, *hit, -ray.direction);
 

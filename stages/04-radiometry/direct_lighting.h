@@ -62,7 +62,9 @@ struct DirectLightSample {
 };
 
 // Task stage4.direct.light_sampling. One emitter chosen by power (probability P) with `u_choice`,
-// one point on it (solid-angle density p) with `u`, a shadow ray: f_r Le cos(theta_i) / (P p).
+// one point on it (solid-angle density p) with `u`, a shadow ray: f_r Le cos(theta_i) / (P p). The
+// environment, when it is the one chosen, gives a direction instead of a point, and its shadow ray
+// has no end: the light arrives only if the ray escapes.
 // The estimate is a plain function of the numbers (a test can pick them); the overload below draws
 // them from a sampler of any type, so the path tracer's stays a concrete type in its own loop (no
 // call through the Sampler interface per number; docs/stage5.md, the speed ladder).
@@ -74,7 +76,7 @@ DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingP
 template <class Numbers>
 DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingPoint& at, Numbers& rng,
                                       const OffsetPolicy& offset) {
-  const float u_choice = scene.emitters().size() > 1 ? rng.uniform() : 0.5f;
+  const float u_choice = scene.emitter_distribution().size() > 1 ? rng.uniform() : 0.5f;
   return sample_direct_light(scene, at, u_choice, rng.uniform2(), offset);
 }
 inline Color direct_by_light_sampling(const LightingScene& scene, const ShadingPoint& at, Sampler& rng,

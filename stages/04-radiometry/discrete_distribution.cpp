@@ -28,6 +28,11 @@ DiscreteDistribution::Choice DiscreteDistribution::sample(float u) const {
   // END TASK
 }
 
+double DiscreteDistribution::cumulative_below(int index) const {
+  if (index <= 0 || cdf_.empty() || total_ == 0.0) return 0.0;
+  return cdf_[std::min(size_t(index), cdf_.size()) - 1] / total_;
+}
+
 float DiscreteDistribution::pmf(int index) const {
   if (index < 0 || size_t(index) >= cdf_.size() || total_ == 0.0) return 0.0f;
   const double below = index == 0 ? 0.0 : cdf_[size_t(index) - 1];

@@ -24,6 +24,9 @@ class DiscreteDistribution {
   // cumulative weight exceeds u times the total (binary search), for u uniform in [0, 1).
   Choice sample(float u) const;
   float pmf(int index) const;
+  // The probability of the items before `index`, P(0) + ... + P(index - 1): where its interval of
+  // u starts.
+  double cumulative_below(int index) const;
   size_t size() const { return cdf_.size(); }
   bool empty() const { return cdf_.empty() || total_ == 0.0; }
 

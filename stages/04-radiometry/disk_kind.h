@@ -5,6 +5,7 @@
 #include "01-ray-casting/plane_intersection.h"
 #include "02-whitted/primitives.h"
 #include "02-whitted/ray_offset.h"
+#include "common/frame.h"
 
 #include <glm/exponential.hpp>
 
@@ -41,7 +42,12 @@ struct DiskKind : PlacedGeometryKind<Disk> {
     const Placed<Disk>& placed = store[found.index];
     const Disk& disk = placed.geometry;
     const SurfacePoint surface = plane_point(ray.at(found.t), Plane{disk.center, disk.normal});
-    return make_hit(ray, found.t, surface.point, surface.error, disk.normal, placed.material, placed.shape);
+    Hit hit = make_hit(ray, found.t, surface.point, surface.error, disk.normal, placed.material, placed.shape);
+    // The disk inscribed in the unit square of texture space, along the axes of its normal's frame.
+    const Frame frame = Frame::from_normal(disk.normal);
+    const Vec3 d = surface.point - disk.center;
+    hit.uv = Vec2(0.5f) + Vec2(glm::dot(d, frame.s), glm::dot(d, frame.t)) * (0.5f / disk.radius);
+    return hit;
   }
 };
 

@@ -34,6 +34,20 @@ std::optional<RectangleEmitter> rectangle_of(const Quad& quad, RectangleSampling
   return RectangleEmitter{v[0], edge_u, edge_v, strategy};
 }
 
+// The radius of a sphere around every bounded primitive (half its box's diagonal); 1 for a scene
+// of planes alone.
+template <class Set>
+float bounding_radius(const Set& primitives) {
+  Aabb box;
+  primitives.for_each_kind([&](auto k) {
+    using Kind = typename Set::template Kind<k>;
+    const auto& store = primitives.template store<k>();
+    for (size_t i = 0; i < Kind::size(store); ++i) box.expand(Kind::bounds(Kind::hot(store, i)));
+  });
+  const float radius = 0.5f * glm::length(box.hi - box.lo);
+  return radius > 0.0f && std::isfinite(radius) ? radius : 1.0f;
+}
+
 }  // namespace
 
 LightingScene::LightingScene(const SceneDescription& description, const LightingOptions& options,
@@ -78,6 +92,14 @@ LightingScene::LightingScene(const SceneDescription& description, const Lighting
       throw InputError(description.source + ": /shapes/" + std::to_string(e.shape) +
                        ": the emitted power (pi x radiance x area) overflows float: make the emitters dimmer or "
                        "smaller");
+  }
+  if (description.environment) {
+    environment_.emplace(*description.environment, options.environment_sampling);
+    power.push_back(environment_->power(bounding_radius(primitives())));
+    total += double(power.back());
+    if (!std::isfinite(power.back()) || total > double(std::numeric_limits<float>::max()))
+      throw InputError(description.source + ": /environment: its power through the scene's bounding sphere "
+                       "(pi r^2 x integral of L) overflows float: make it dimmer or the scene smaller");
   }
   emitter_distribution_ = DiscreteDistribution(power);
 }

@@ -3,7 +3,8 @@
 // distribution that picks an emitter in proportion to its power. A rectangular quad emitter is
 // one rectangle emitter (sampled by area or by solid angle); any other quad or mesh emitter is split
 // into its triangles, each an emitter of its own, so a quad's two halves are chosen in proportion
-// to their areas.
+// to their areas. An environment light joins the same choice, weighted by its power through the
+// scene's bounding sphere.
 #pragma once
 
 #include "02-whitted/sphere_kind.h"
@@ -12,6 +13,7 @@
 #include "04-radiometry/discrete_distribution.h"
 #include "04-radiometry/disk_kind.h"
 #include "04-radiometry/emitters.h"
+#include "04-radiometry/environment_light.h"
 #include "common/emission.h"
 
 namespace rt {
@@ -28,6 +30,8 @@ struct LightingOptions {
   // Stage 2's watertight test with the corners in SIMD lanes: its answers bit for bit, faster
   // (docs/stage5.md, the speed ladder).
   TriangleMethod triangle_method = TriangleMethod::watertight_lanes;
+  // By the environment map's luminance (docs/stage4.md measures the gain over uniform).
+  EnvironmentSampling environment_sampling = EnvironmentSampling::importance;
 };
 
 class LightingScene : public SurfaceScene<LightingPrimitives> {
@@ -44,12 +48,26 @@ class LightingScene : public SurfaceScene<LightingPrimitives> {
   Color emitted(const Hit& hit) const { return front_side_emission(material(hit), hit); }
 
   const std::vector<AreaEmitter>& emitters() const { return emitters_; }
+  // The environment light, if the scene has one (common/scene.h, Environment).
+  const EnvironmentLight* environment() const { return environment_ ? &*environment_ : nullptr; }
+  // What lights the scene from a direction in which nothing is hit: the environment's radiance,
+  // black without one (`background` is only what the camera sees there; it lights nothing).
+  Color environment_radiance(Vec3 direction) const {
+    return environment_ ? environment_->radiance(direction) : Color(0.0f);
+  }
+  // What a ray that leaves the scene sees: the environment, or the background.
+  Color escaped_radiance(Vec3 direction) const { return environment_ ? environment_->radiance(direction) : background(); }
+
+  // Chooses what light sampling samples, by power: the area emitters are items 0 ... n - 1, and
+  // the environment, if any, is item n (environment_index()).
   const DiscreteDistribution& emitter_distribution() const { return emitter_distribution_; }
+  int environment_index() const { return environment_ ? int(emitters_.size()) : -1; }
   // The emitter a hit landed on, or -1: the triangle's own emitter for meshes and other quads.
   int emitter_index(const Hit& hit) const;
 
  private:
   std::vector<AreaEmitter> emitters_;
+  std::optional<EnvironmentLight> environment_;
   struct ShapeEmitters {
     int first = -1;      // its first emitter, or -1
     bool whole = false;  // one emitter for all its triangles (a rectangle)

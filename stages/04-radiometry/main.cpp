@@ -28,14 +28,16 @@ int main(int argc, char** argv) {
             ->transform(CLI::CheckedTransformer(std::map<std::string, SphereSampling>{
                 {"cone", SphereSampling::cone}, {"area", SphereSampling::area}}));
         add_rectangle_sampling_flag(app, lighting);
+        add_environment_sampling_flag(app, lighting);
       },
       [&] {
         const SceneDescription description = load_scene(options.scene);
         const RenderSettings settings = options.settings_for(description);
         direct.max_depth = settings.max_depth;
         const LightingScene scene(description, lighting);
-        std::printf("stage4: %zu area emitter%s, %zu point light%s\n", scene.emitters().size(),
-                    scene.emitters().size() == 1 ? "" : "s", scene.lights().size(), scene.lights().size() == 1 ? "" : "s");
+        std::printf("stage4: %zu area emitter%s, %zu point light%s%s\n", scene.emitters().size(),
+                    scene.emitters().size() == 1 ? "" : "s", scene.lights().size(), scene.lights().size() == 1 ? "" : "s",
+                    scene.environment() ? ", an environment" : "");
         const Camera camera(description.camera, settings.width, settings.height);
         render_and_write("stage4", options, description, settings, camera, PixelMeaning::radiance,
                          [&](const Ray& ray, Sampler& rng) { return direct_radiance(scene, ray, direct, rng); });

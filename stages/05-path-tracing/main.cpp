@@ -2,6 +2,10 @@
 #include "01-ray-casting/render.h"
 #include "04-radiometry/light_sampling_flags.h"
 #include "05-path-tracing/path_render.h"
+#include "common/error.h"
+#include "common/heat_map.h"
+#include "common/image_io.h"
+#include "common/sample_batch.h"
 
 #include <map>
 
@@ -11,6 +15,9 @@ int main(int argc, char** argv) {
   PathOptions path;
   LightingOptions lighting;
   SamplerKind sampler = SamplerKind::sobol;
+  std::optional<float> adaptive_tolerance;
+  AdaptiveSettings adaptive;
+  std::string sample_map;
 
   return run_stage_program(
       argc, argv, "stage5", "Stage 5: Monte Carlo path tracing", options,
@@ -30,18 +37,42 @@ int main(int argc, char** argv) {
                 {sampler_name(SamplerKind::independent), SamplerKind::independent},
                 {sampler_name(SamplerKind::sobol), SamplerKind::sobol}}));
         add_rectangle_sampling_flag(app, lighting);
+        add_environment_sampling_flag(app, lighting);
+        app.add_option("--adaptive", adaptive_tolerance,
+                       "Adaptive sampling: each pixel stops once the 95% confidence interval of its mean is within "
+                       "this fraction of it (e.g. 0.05), after at least --adaptive-min-spp and at most --spp paths")
+            ->transform(finite_range(1e-6, 1.0));
+        app.add_option("--adaptive-min-spp", adaptive.min_spp, "Paths per pixel before the first test (default 16)")
+            ->transform(decimal(2, kMaxSpp));
+        app.add_option("--sample-map", sample_map,
+                       "Also write a PNG heat map of the paths each pixel took (black: none, pale yellow: --spp)");
       },
       [&] {
+        if (adaptive_tolerance && (options.sample_range || is_batch_path(options.out)))
+          throw UsageError("--adaptive: each pixel stops where its own samples say, so batches of one render "
+                           "cannot be rendered apart and merged; render the image in one run");
+        if (!sample_map.empty() && image_format_for(sample_map) != ImageFormat::png)
+          throw UsageError("--sample-map: the heat map is a picture: give a .png file");
         const SceneDescription description = load_scene(options.scene);
         const RenderSettings settings = options.settings_for(description);
         path.max_depth = settings.max_depth;
+        if (adaptive_tolerance) adaptive.tolerance = *adaptive_tolerance;
         const LightingScene scene(description, lighting);
         const Camera camera(description.camera, settings.width, settings.height);
         SampleGuard guard;
         render_with_progress_and_write("stage5", options, description, settings, PixelMeaning::radiance,
                                        [&](ProgressBar* progress) {
-                                         return render_path_samples(scene, camera, settings, path, sampler,
-                                                                    options.threads, guard, progress);
+                                         SampleSums sums = render_path_samples(
+                                             scene, camera, settings, path, sampler, options.threads, guard,
+                                             progress, adaptive_tolerance ? &adaptive : nullptr);
+                                         if (adaptive_tolerance)
+                                           std::printf("stage5: adaptive: %.1f paths per pixel on average, of %d\n",
+                                                       double(sums.total_count()) / double(settings.window().area()),
+                                                       settings.spp);
+                                         if (!sample_map.empty())
+                                           write_image(sample_map, heat_map(sums.counts(), sums.width(), sums.height(),
+                                                                            std::uint32_t(settings.spp)));
+                                         return sums;
                                        });
         if (guard.dropped() > 0)
           std::printf("stage5: %llu samples had NaN, infinite or negative radiance and were counted as black\n",

@@ -18,9 +18,15 @@ const char* sampler_name(SamplerKind sampler) { return sampler == SamplerKind::s
 
 SampleSums render_path_samples(const LightingScene& scene, const Camera& camera,
                                const RenderSettings& settings, const PathOptions& options, SamplerKind sampler,
-                               int threads, SampleGuard& guard, ProgressBar* progress) {
+                               int threads, SampleGuard& guard, ProgressBar* progress,
+                               const AdaptiveSettings* adaptive) {
   // `auto&`: each sampler's own path_radiance, with its calls compiled in.
   auto radiance = [&](const Ray& ray, auto& numbers) { return guard(path_radiance(scene, ray, options, numbers)); };
+  if (adaptive) {
+    if (sampler == SamplerKind::sobol)
+      return render_adaptive<SobolSampler>(camera, settings, *adaptive, threads, radiance, progress);
+    return render_adaptive<Rng>(camera, settings, *adaptive, threads, radiance, progress);
+  }
   if (sampler == SamplerKind::sobol) return render_samples<SobolSampler>(camera, settings, threads, radiance, progress);
   return render_samples<Rng>(camera, settings, threads, radiance, progress);
 }

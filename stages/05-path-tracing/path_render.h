@@ -4,6 +4,7 @@
 #pragma once
 
 #include "01-ray-casting/render.h"
+#include "05-path-tracing/adaptive_sampling.h"
 #include "05-path-tracing/path_tracer.h"
 
 namespace rt {
@@ -22,9 +23,11 @@ Image render_paths(const LightingScene& scene, const Camera& camera, const Rende
                    const PathOptions& options, SamplerKind sampler, int threads, SampleGuard& guard,
                    ProgressBar* progress = nullptr);
 // The same undivided, per pixel the sum and number of its paths (stage 1's render_samples), for a
-// program that writes sample batches.
+// program that writes sample batches. With `adaptive`, each pixel stops when its estimate is good
+// enough (adaptive_sampling.h), at most settings.spp paths.
 SampleSums render_path_samples(const LightingScene& scene, const Camera& camera,
                                const RenderSettings& settings, const PathOptions& options, SamplerKind sampler,
-                               int threads, SampleGuard& guard, ProgressBar* progress = nullptr);
+                               int threads, SampleGuard& guard, ProgressBar* progress = nullptr,
+                               const AdaptiveSettings* adaptive = nullptr);
 
 }  // namespace rt

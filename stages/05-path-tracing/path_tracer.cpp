@@ -33,6 +33,12 @@ float light_sampling_pdf(const LightingScene& scene, Vec3 from, const Hit& hit) 
   return scene.emitter_distribution().pmf(index) * scene.emitters()[size_t(index)].pdf(from, hit.point);
 }
 
+float environment_sampling_pdf(const LightingScene& scene, Vec3 direction) {
+  const EnvironmentLight* environment = scene.environment();
+  if (!environment) return 0.0f;
+  return scene.emitter_distribution().pmf(scene.environment_index()) * environment->pdf(direction);
+}
+
 template <class Numbers>
 Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const PathOptions& options, Numbers& rng) {
   const PathIntegrator integrator = options.integrator;
@@ -53,7 +59,24 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
     const Vec2 u = rng.uniform2();
     const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
     if (!hit) {
-      radiance += beta * scene.background();
+      // BEGIN TASK stage5.path.environment
+      // The environment, found by the path leaving the scene: the same rule as for an emitter it
+      // hits, with the environment's density. A background lights nothing and no light sample
+      // finds it, so the path counts it whole.
+      if (const EnvironmentLight* environment = scene.environment()) {
+        const Color le = environment->radiance(ray.direction);
+        if (!samples_lights || after_delta) {
+          radiance += beta * le;
+        } else if (integrator == PathIntegrator::mis) {
+          radiance += beta * le * power_heuristic(bsdf_pdf, environment_sampling_pdf(scene, ray.direction));
+        }
+      } else {
+        radiance += beta * scene.background();
+      }
+      // PLACEHOLDER
+      // report_unfinished_task("stage5.path.environment");
+      // radiance += beta * scene.escaped_radiance(ray.direction);
+      // END TASK
       break;
     }
     // BEGIN TASK stage5.path.emitted

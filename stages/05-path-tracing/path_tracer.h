@@ -67,6 +67,9 @@ extern template Color path_radiance(const LightingScene&, const Ray&, const Path
 // The solid-angle density with which light sampling (stage 4: emitter by power, point on it) would
 // have produced the direction from `from` to the emitter point of `hit`; 0 if `hit` is no emitter.
 float light_sampling_pdf(const LightingScene& scene, Vec3 from, const Hit& hit);
+// The same for a direction that leaves the scene: the environment's share of the choice times its
+// density for `direction`; 0 without an environment.
+float environment_sampling_pdf(const LightingScene& scene, Vec3 direction);
 
 // Keeps NaN, Inf and negative radiance out of the image, and counts each such sample instead of
 // hiding it: one NaN would otherwise turn a whole pixel (and every average over it) into NaN.

@@ -7,7 +7,7 @@ cd "$(dirname "$0")/../.."
 seconds=${1:-60}
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
-for kind in scene obj batch merge; do
+for kind in scene obj batch merge image; do
   mkdir -p "$scratch/$kind"
   echo "fuzz: ${kind}_fuzzer for ${seconds} s"
   # The first folder receives new inputs; the others are only read. Crash inputs go to $scratch.

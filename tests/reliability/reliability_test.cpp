@@ -11,6 +11,7 @@
 #include "common/scene.h"
 
 #include "fuzz/batch_inputs.h"
+#include "fuzz/image_input.h"
 #include "reliability/child_process.h"
 #include "support/test_support.h"
 
@@ -63,13 +64,15 @@ TEST(FuzzInputs, EverySeedAndFindingLoadsOrIsRefusedInOneLine) {
         expect_loads_or_one_line(entry.path(), "input.json", [&](const std::string& t, const std::string& s) {
           fuzzing::read_batch_text(batch_folder.path(), t, s);
         });
+      else if (kind == "image")
+        expect_loads_or_one_line(entry.path(), "", [](const std::string& t, const std::string&) { fuzzing::decode_image_input(t); });
       else if (kind == "merge") {
         EXPECT_NO_THROW(fuzzing::merge_batch_texts(batch_folder.path(), testing::read_text(entry.path()))) << entry.path();
       }
       ++files[kind];
     }
   }
-  for (const char* kind : {"scene", "obj", "batch", "merge"}) EXPECT_GE(files[kind], 3) << kind;
+  for (const char* kind : {"scene", "obj", "batch", "merge", "image"}) EXPECT_GE(files[kind], 3) << kind;
   // The batch seeds are valid: they carry the fingerprints of the images the fuzzers write.
   EXPECT_EQ(fuzzing::read_batch_text(batch_folder.path(), testing::read_text(source_path("tests/fuzz/corpus/batch/whole.json")),
                                      "whole.json")

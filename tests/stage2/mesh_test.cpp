@@ -126,10 +126,35 @@ INSTANTIATE_TEST_SUITE_P(
         BrokenObj{"infinite_vertex", "v 0 0 0\nv 1 0 0\nv 0 1e40 0\nf 1 2 3\n", "3: vertex needs three finite coordinates, got '1e40'"},
         BrokenObj{"short_vertex", "v 0 0\n", "1: vertex needs three finite coordinates, got '(missing)'"},
         BrokenObj{"zero_normal", "v 0 0 0\nvn 0 0 0\n", "2: normal has zero length"},
+        BrokenObj{"nan_texture_coordinate", "v 0 0 0\nvt 0.5 nan\n", "2: texture coordinate needs two finite numbers, got 'nan'"},
+        BrokenObj{"short_texture_coordinate", "v 0 0 0\nvt 0.5\n", "2: texture coordinate needs two finite numbers, got '(missing)'"},
+        BrokenObj{"texture_index_out_of_range", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/2\n",
+                  "5: texture index 2 is out of range (the file has 1 texture coordinates)"},
         BrokenObj{"two_corner_face", "v 0 0 0\nv 1 0 0\nf 1 2\n", "3: a face needs at least three corners"},
         BrokenObj{"no_faces", "# nothing but vertices\nv 0 0 0\nv 1 0 0\nv 0 1 0\n", " the mesh has no faces"},
         BrokenObj{"empty_file", "", " the mesh has no faces"}),
     [](const auto& info) { return std::string(info.param.name); });
+
+// Texture coordinates ride along like normals: per corner, fanned with the face, and blended by a
+// hit's barycentrics; a face whose corners do not all have one gets the barycentrics themselves.
+TEST(ObjLoader, ReadsTextureCoordinatesPerCorner) {
+  const TriangleMesh mesh = parse_obj(
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 2 0\nvt 2 2\nvt 0 2 0.5\n"
+      "f 1/1 2/2 3/3 4/4\nf 1 3 4\n",
+      "uv.obj");
+  ASSERT_EQ(mesh.uvs.size(), 4u);
+  EXPECT_EQ(mesh.uvs[3], Vec2(0.0f, 2.0f)) << "a third number (w) is ignored";
+  ASSERT_EQ(mesh.triangles.size(), 3u);
+  EXPECT_TRUE(mesh.has_uvs(0));
+  EXPECT_TRUE(mesh.has_uvs(1));
+  EXPECT_FALSE(mesh.has_uvs(2));
+  EXPECT_EQ(mesh.uv_at(1, 0.5f, 0.25f), 0.25f * Vec2(0, 0) + 0.5f * Vec2(2, 2) + 0.25f * Vec2(0, 2))
+      << "the fan's second triangle is corners 1, 3, 4";
+  EXPECT_EQ(mesh.uv_at(2, 0.5f, 0.25f), Vec2(0.5f, 0.25f));
+  // A mirroring placement swaps two corners of every triangle: the coordinates must follow.
+  const TriangleMesh mirrored = place_mesh(mesh, Transform::from_scale_rotate_translate(Vec3(-1, 1, 1), Vec3(0), Vec3(0)));
+  EXPECT_EQ(mirrored.uv_at(0, 0.25f, 0.5f), mesh.uv_at(0, 0.5f, 0.25f));
+}
 
 TEST(ObjLoader, MissingFileIsNamed) {
   EXPECT_EQ(error_of([] { load_obj("/nonexistent/mesh.obj"); }), "/nonexistent/mesh.obj: cannot open mesh file");

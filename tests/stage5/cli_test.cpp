@@ -1,5 +1,6 @@
 // The stage-5 program: every integrator and both samplers render the Cornell box, the image does
-// not depend on the thread count, and bad input is one line.
+// not depend on the thread count, bad input is one line, and adaptive sampling writes its heat map
+// and refuses batches rendered apart.
 #include "common/image_io.h"
 #include "common/metrics.h"
 
@@ -53,6 +54,34 @@ TEST(Stage5Cli, BadInputIsOneLine) {
   }
   const auto missing = run_command(stage5("--scene " + (dir / "none.json").string() + " --out " + (dir / "o.png").string()), dir);
   expect_one_line_error(missing, 1, "none.json");
+}
+
+TEST(Stage5Adaptive, WritesTheImageAndItsHeatMap) {
+  ScratchDir dir;
+  const std::string scene = source_path("assets/scenes/environment.json").string();
+  const auto r = run_command(stage5("--scene " + scene + " --width 48 --height 27 --spp 64 --adaptive 0.05 "
+                                    "--sample-map " + (dir / "map.png").string() + " --out " + (dir / "o.pfm").string()),
+                             dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("stage5: adaptive: "), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir / "map.png"));
+  EXPECT_EQ(read_pfm(dir / "o.pfm").width(), 48);
+}
+
+TEST(Stage5Adaptive, RefusesBatchesRenderedApart) {
+  ScratchDir dir;
+  const std::string scene = source_path("assets/scenes/environment.json").string();
+  expect_one_line_error(run_command(stage5("--scene " + scene + " --adaptive 0.05 --sample-range 0:8 --out " +
+                                           (dir / "o.json").string()), dir),
+                        2, "--adaptive: each pixel stops where its own samples say");
+  expect_one_line_error(run_command(stage5("--scene " + scene + " --adaptive 0.05 --out " + (dir / "o.json").string()), dir),
+                        2, "--adaptive");
+  expect_one_line_error(run_command(stage5("--scene " + scene + " --adaptive 0 --out " + (dir / "o.png").string()), dir),
+                        2, "--adaptive");
+  expect_one_line_error(run_command(stage5("--scene " + scene + " --sample-map m.pfm --out " + (dir / "o.png").string()), dir),
+                        2, "--sample-map");
+  EXPECT_FALSE(std::filesystem::exists(dir / "o.json"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "o.png"));
 }
 
 }  // namespace
