@@ -100,7 +100,7 @@ std::string scene_fingerprint(const fs::path& scene_file, const SceneDescription
   // The images the scene file names: a texture or an environment changed on disk changes the render.
   for (const Material& material : scene.materials)
     for (const auto* texture : {material.albedo_texture.get(), material.specular_texture.get()})
-      if (texture) add_all(texture->texels.pixels());
+      if (texture) add_all(texture->texels->pixels());
   if (scene.environment && scene.environment->image) add_all(scene.environment->image->pixels());
   return hash.hex();
 }

@@ -78,7 +78,7 @@ enum class TextureWrap { repeat, clamp };
 enum class TextureFilter { nearest, bilinear };
 struct ImageTexture {
   std::string file;  // as resolved from the scene file, for messages
-  Image texels;
+  std::shared_ptr<const Image> texels;  // shared by the materials that name the same file
   TextureWrap wrap = TextureWrap::repeat;
   TextureFilter filter = TextureFilter::bilinear;
   Color mean{0.0f};     // the texels' average: what stages 1-3 shade with, which look no texture up

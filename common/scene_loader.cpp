@@ -98,15 +98,16 @@ std::shared_ptr<const ImageTexture> parse_texture(const JsonNode& n, ImageCache&
     if (f != "bilinear" && f != "nearest") n["filter"].fail("unknown texture filter '" + f + "' (known: bilinear, nearest)");
     texture.filter = f == "bilinear" ? TextureFilter::bilinear : TextureFilter::nearest;
   }
-  texture.texels = *images.load(n["file"], encoding, texture.file);
+  texture.texels = images.load(n["file"], encoding, texture.file);
   glm::dvec3 sum(0.0);
-  for (const Color& c : texture.texels.pixels()) {
+  for (const Color& c : texture.texels->pixels()) {
     sum += glm::dvec3(c);
     texture.largest = glm::max(texture.largest, c);
   }
-  texture.mean = Color(sum / double(texture.texels.pixel_count()));
+  texture.mean = Color(sum / double(texture.texels->pixel_count()));
   if (max_component(texture.largest) > hi)
-    n["file"].fail(texture.file + ": a texel exceeds " + std::to_string(int(hi)) + ", the most a " + what + " may be");
+    n["file"].fail(texture.file + ": a texel is above " + std::to_string(int(hi)) + ", where " + what + " must be in [0, " +
+                   std::to_string(int(hi)) + "]");
   return std::make_shared<const ImageTexture>(std::move(texture));
 }
 

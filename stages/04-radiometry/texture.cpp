@@ -20,7 +20,7 @@ int wrap_texel(int i, int n, TextureWrap wrap) {
 }
 
 Color texture_lookup(const ImageTexture& texture, Vec2 uv) {
-  const Image& texels = texture.texels;
+  const Image& texels = *texture.texels;
   const int width = texels.width(), height = texels.height();
   // One period first: any float (a plane's coordinates reach 1e18) then makes a small texel index,
   // and a NaN (which no hit should carry) reads texel 0 instead of overflowing an int.

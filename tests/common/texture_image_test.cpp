@@ -123,7 +123,9 @@ TEST_F(TexturedScene, TexturesReadWithTheirModesAndMean) {
   EXPECT_EQ(a.albedo_texture->largest, Color(1.0f));
   const Material& b = s.materials[1];
   ASSERT_TRUE(b.specular_texture);
-  EXPECT_EQ(b.specular_texture->texels.at(1, 1), Color(188.0f / 255.0f)) << "data: codes / 255";
+  EXPECT_EQ(b.specular_texture->texels->at(1, 1), Color(188.0f / 255.0f)) << "data: codes / 255";
+  EXPECT_NE(b.specular_texture->texels, a.albedo_texture->texels) << "read once per encoding";
+  EXPECT_EQ(s.materials[2].specular_texture->texels, a.albedo_texture->texels) << "the same file and encoding: shared";
   EXPECT_EQ(b.specular_texture->wrap, TextureWrap::repeat) << "the default";
   EXPECT_EQ(b.specular_texture->filter, TextureFilter::bilinear) << "the default";
   EXPECT_TRUE(s.materials[2].specular_texture);
@@ -164,7 +166,7 @@ TEST_F(TexturedScene, BadTexturesAndEnvironmentsFailWithOneLine) {
   expect(failure(R"({"m": {"albedo": {"file": "grid.png", "wrap": "mirror"}}})"), "/materials/m/albedo/wrap: unknown wrap mode 'mirror'");
   expect(failure(R"({"m": {"albedo": {"file": "grid.png", "filter": "cubic"}}})"), "unknown texture filter 'cubic'");
   expect(failure(R"({"m": {"albedo": {"file": "grid.png", "encoding": "gamma"}}})"), "unknown encoding 'gamma'");
-  expect(failure(R"({"m": {"albedo": {"file": "bright.pfm"}}})"), "a texel exceeds 1, the most a albedo");
+  expect(failure(R"({"m": {"albedo": {"file": "bright.pfm"}}})"), "bright.pfm: a texel is above 1, where albedo (more than 1 creates energy) must be in [0, 1]");
   expect(failure(R"({"m": {"albedo": {"file": "grid.png"}, "checker": {"albedo": [1,1,1], "size": 1}}})"),
          "/materials/m/checker: a material has a checker or an albedo texture, not both");
   expect(failure(R"({"m": {"type": "phong", "albedo": {"file": "grid.png"}, "specular": [0.1, 0.1, 0.1]}})"),

@@ -19,11 +19,12 @@ const Color kTopLeft(1.0f, 0.0f, 0.0f), kTopRight(0.0f, 1.0f, 0.0f), kBottomLeft
 // 2 x 2 texels, row 0 (the top) first.
 ImageTexture two_by_two(TextureWrap wrap, TextureFilter filter) {
   ImageTexture t;
-  t.texels = Image(2, 2);
-  t.texels.at(0, 0) = kTopLeft;
-  t.texels.at(1, 0) = kTopRight;
-  t.texels.at(0, 1) = kBottomLeft;
-  t.texels.at(1, 1) = kBottomRight;
+  auto texels = std::make_shared<Image>(2, 2);
+  texels->at(0, 0) = kTopLeft;
+  texels->at(1, 0) = kTopRight;
+  texels->at(0, 1) = kBottomLeft;
+  texels->at(1, 1) = kBottomRight;
+  t.texels = texels;
   t.wrap = wrap;
   t.filter = filter;
   return t;
@@ -104,13 +105,13 @@ TEST(TextureLookup, HugeAndNonFiniteCoordinatesStayInside) {
 
 TEST(TextureLookup, OneColourTextureReturnsItsColourBitForBit) {
   ImageTexture t;
-  t.texels = Image(3, 5, Color(0.2158605f, 0.5f, 0.0033465f));
+  t.texels = std::make_shared<Image>(3, 5, Color(0.2158605f, 0.5f, 0.0033465f));
   for (const TextureFilter filter : {TextureFilter::nearest, TextureFilter::bilinear})
     for (const TextureWrap wrap : {TextureWrap::repeat, TextureWrap::clamp}) {
       t.filter = filter;
       t.wrap = wrap;
       for (const Vec2 uv : {Vec2(0.0f), Vec2(0.123f, 0.877f), Vec2(0.99f, 0.51f), Vec2(-2.3f, 7.7f)})
-        EXPECT_EQ(texture_lookup(t, uv), t.texels.at(0, 0));
+        EXPECT_EQ(texture_lookup(t, uv), t.texels->at(0, 0));
     }
 }
 
@@ -191,10 +192,12 @@ TEST(TextureCoordinates, DiskFillsTheUnitSquareAndPlaneCountsSceneUnits) {
   EXPECT_NEAR(glm::length(b.uv - a.uv), 5.0f, 1e-5f) << "one unit of u or v per scene unit";
 }
 
-// A texture reaches the BRDF: the Lambertian albedo at a hit is the texel there.
+// A texture reaches the BRDF: the Lambertian albedo at a hit is the texel there (-1 where the ray
+// finds nothing, which no texel is).
 Color albedo_seen(const LightingScene& scene, Vec3 from, Vec3 to) {
-  const Hit hit = first_hit(scene, from, to);
-  const ShadingPoint at = make_shading_point(scene, hit, glm::normalize(from - to));
+  const std::optional<Hit> hit = scene.closest_hit(Ray{from, glm::normalize(to - from)}, Interval::positive());
+  if (!hit) return Color(-1.0f);
+  const ShadingPoint at = make_shading_point(scene, *hit, glm::normalize(from - to));
   return at.bsdf.eval(at.wo, Vec3(0, 0, 1)) * kPi;  // f = rho / pi
 }
 
@@ -219,8 +222,10 @@ TEST(TexturedMaterial, SpecularTextureIsTheMicrofacetF0) {
   const LightingScene scene(d);
   const Vec3 eye(0.5f, 0.5f, 3.0f);
   // Where the texture is blue, the BRDF is the microfacet model with a blue F0.
-  const Hit hit = first_hit(scene, eye, Vec3(0.1f, 0.1f, 0.0f));
-  const ShadingPoint at = make_shading_point(scene, hit, glm::normalize(eye - hit.point));
+  const std::optional<Hit> hit =
+      scene.closest_hit(Ray{eye, glm::normalize(Vec3(0.1f, 0.1f, 0.0f) - eye)}, Interval::positive());
+  ASSERT_TRUE(hit.has_value());
+  const ShadingPoint at = make_shading_point(scene, *hit, glm::normalize(eye - hit->point));
   const Bsdf blue(MicrofacetBrdf{kBottomLeft, GgxDistribution{d.materials[0].roughness}});
   const Vec3 wi = glm::normalize(Vec3(0.2f, -0.1f, 1.0f));
   EXPECT_EQ(at.bsdf.eval(at.wo, wi), blue.eval(at.wo, wi));
@@ -240,7 +245,7 @@ TEST(TexturedMaterial, OneColourTextureRendersLikeTheConstantBitForBit) {
     d.materials[0].albedo = albedo;
     if (textured) {
       auto texture = std::make_shared<ImageTexture>();
-      texture->texels = Image(4, 3, albedo);
+      texture->texels = std::make_shared<Image>(4, 3, albedo);
       texture->mean = albedo;
       d.materials[0].albedo_texture = texture;
     }
