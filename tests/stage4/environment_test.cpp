@@ -139,6 +139,21 @@ TEST(EnvironmentLight, SamplesMatchTheirDensityChiSquare) {
   EXPECT_TRUE(r.passed) << r.message;
 }
 
+TEST(EnvironmentLight, PolesGiveNoSampleAndNoInfiniteDensity) {
+  // At a pole sin(theta) = 0 and p(w) = p(s, t) / (2 pi^2 sin(theta)) is infinite: sample() must
+  // give no direction there (u.y = 0 picks the first row at t = 0) and pdf() must give 0, never
+  // an infinite weight that would turn a pixel NaN.
+  const EnvironmentLight light(environment_of(peaked_map(16, 8, 3, 6, 0, 2, Color(40.0f), Color(0.5f))));
+  for (const float ux : {0.0f, 0.3f, 0.9f}) EXPECT_FALSE(light.sample(Vec2(ux, 0.0f)).has_value()) << ux;
+  EXPECT_EQ(light.pdf(Vec3(0.0f, 1.0f, 0.0f)), 0.0f);
+  EXPECT_EQ(light.pdf(Vec3(0.0f, -1.0f, 0.0f)), 0.0f);
+  // Just off the pole both are finite and agree.
+  const std::optional<EnvironmentSample> near = light.sample(Vec2(0.3f, 1e-4f));
+  ASSERT_TRUE(near.has_value());
+  EXPECT_TRUE(std::isfinite(near->pdf));
+  EXPECT_NEAR(light.pdf(near->wi), near->pdf, 1e-2f * near->pdf);
+}
+
 TEST(EnvironmentLight, ConstantEnvironmentIsUniformOnTheSphere) {
   Environment e;
   e.scale = Color(2.0f, 1.0f, 0.5f);
