@@ -56,6 +56,34 @@ TEST(EnvironmentPaths, CameraAndMirrorSeeTheEnvironmentExactly) {
 
 const PathIntegrator (&kIntegrators)[4] = kPathIntegrators;
 
+TEST(EnvironmentPaths, WithoutAnEnvironmentTheBackgroundIsSeenAndLightsWhole) {
+  // A background is no light sample's, so every integrator counts it whole wherever a path leaves:
+  // straight into the sky it is the background itself, and a Lambertian floor under it, which sees
+  // nothing but sky above, sends back rho B.
+  SceneDescription d;
+  d.source = "background";
+  Material floor;
+  floor.albedo = Color(0.5f);
+  d.materials.push_back(floor);
+  d.shapes.push_back(Shape{"floor", kFloor, 0});
+  d.background = Color(0.25f, 0.5f, 1.0f);
+  const LightingScene scene(d);
+  const Ray down{Vec3(0, 1, 0), glm::normalize(Vec3(0.3f, -1.0f, 0.2f))};
+  ASSERT_TRUE(scene.closest_hit(down, Interval::positive()).has_value()) << "the ray must hit the floor";
+  for (const PathIntegrator integrator : kIntegrators) {
+    PathOptions options;
+    options.integrator = integrator;
+    Rng rng(1, 0, 0);
+    EXPECT_EQ(path_radiance(scene, Ray{Vec3(0, 1, 0), Vec3(0, 1, 0)}, options, rng), d.background)
+        << integrator_name(integrator);
+    for (int channel = 0; channel < 3; ++channel) {
+      const Estimate m = estimate(scene, down, options, 4000, 1, channel);
+      EXPECT_NEAR(m.mean, 0.5 * d.background[channel], 4.0 * m.standard_error + 1e-6)
+          << integrator_name(integrator) << ", channel " << channel;
+    }
+  }
+}
+
 TEST(EnvironmentPaths, WhiteFurnaceForEveryIntegrator) {
   // A Lambertian sphere of albedo rho under radiance 1 everywhere reflects rho.
   for (const float rho : {1.0f, 0.5f}) {
