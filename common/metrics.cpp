@@ -28,6 +28,20 @@ double mse(const Image& image, const Image& reference) {
 
 double rmse(const Image& image, const Image& reference) { return std::sqrt(mse(image, reference)); }
 
+double rmse(const Image& image, const Image& reference, PixelRect r) {
+  require_same_size(image, reference);
+  if (r.x0 < 0 || r.y0 < 0 || r.x1 > image.width() || r.y1 > image.height() || r.x0 >= r.x1 || r.y0 >= r.y1)
+    throw std::invalid_argument("rmse: rectangle is empty or outside the image");
+  double sum = 0.0;
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double d = double(image.at(x, y)[c]) - double(reference.at(x, y)[c]);
+        sum += d * d;
+      }
+  return std::sqrt(sum / (3.0 * double(r.area())));
+}
+
 double relative_mse(const Image& image, const Image& reference, double epsilon) {
   return mean_over_channels(image, reference, [epsilon](double a, double b) {
     return (a - b) * (a - b) / (b * b + epsilon);

@@ -9,6 +9,9 @@ namespace rt {
 // Mean squared error: mean of (a - b)^2.
 double mse(const Image& image, const Image& reference);
 double rmse(const Image& image, const Image& reference);
+// The RMSE over the pixels of `rect` alone (the region a scene is about: a caustic, a wall).
+// Throws std::invalid_argument for images of different sizes or a rectangle outside them.
+double rmse(const Image& image, const Image& reference, PixelRect rect);
 
 // Relative MSE: mean of (a - b)^2 / (b^2 + epsilon). Dividing by the reference's own value
 // weighs dark and bright regions alike; epsilon keeps black reference pixels from dominating

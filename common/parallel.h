@@ -18,6 +18,11 @@ inline constexpr int kTileSize = 16;
 void parallel_for_tiles(int width, int height, int threads,
                         const std::function<void(const PixelRect&)>& body);
 
+// Calls body(i) once for every i in [0, count) on `threads` threads (0 = all cores), handing out the
+// indices from a shared counter; the same error rule. parallel_for_tiles is this over the tiles,
+// numbered row by row: a caller that keeps one result per tile can combine them in that order.
+void parallel_for(int count, int threads, const std::function<void(int)>& body);
+
 // Number of threads `threads` stands for (0 = all cores, at least 1).
 int resolve_thread_count(int threads);
 

@@ -318,6 +318,56 @@ def cornell_pictures(root, render):
     fig.savefig(root / "docs" / "images" / "stage5-cornell-box.png", dpi=100)
     plt.close(fig)
 
+TRANSPORT_STYLE = {"pt": ("o-", "tab:grey"), "lt": ("v-", "tab:purple"), "bdpt": ("s-", "tab:blue"),
+                   "sppm": ("D-", "tab:red")}
+TRANSPORT_REGION = {"cornell-box": "whole image", "caustic": "the caustic in front of the ball",
+                    "caustic-through-glass": "the caustic seen through a pane of glass",
+                    "light-through-gap": "floor and wall left of the gap"}
+
+
+def transport_error_vs_time(charts):
+    """Stage 6: RMSE over each scene's region against wall time, one panel per scene."""
+    rows = read_rows(charts / "stage6-error-vs-time.csv")
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    fig, axes = plt.subplots(1, len(scenes), figsize=(4 * len(scenes), 4.2))
+    for ax, scene in zip(axes, scenes):
+        for method, (style, colour) in TRANSPORT_STYLE.items():
+            mine = [r for r in rows if r["scene"] == scene and r["method"] == method]
+            if mine:
+                ax.loglog([float(r["seconds"]) for r in mine], [float(r["region_rmse"]) for r in mine], style,
+                          color=colour, label=method, ms=4)
+        ax.set(xlabel="wall time on 2 cores (s)", title=f"{scene}\n({TRANSPORT_REGION.get(scene, '')})")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    axes[0].set_ylabel("RMSE against the converged reference")
+    fig.suptitle("Stage 6: error against time where path tracing fails (1, 2, 4, ... spp or SPPM passes)")
+    fig.tight_layout()
+    fig.savefig(charts / "stage6-error-vs-time.png", dpi=110)
+    plt.close(fig)
+
+
+def transport_pictures(root, renders, charts):
+    """Stage 6's equal-time pictures: per scene, each method's render of about 2 s side by side."""
+    sys.path.insert(0, str(pathlib.Path(__file__).parent))
+    from pfm import read_pfm  # noqa: E402  (a sibling tool)
+    rows = [r for r in read_rows(charts / "stage6-error-vs-time.csv") if r["picture"] == "1"]
+    for scene in dict.fromkeys(r["scene"] for r in rows):
+        mine = [r for r in rows if r["scene"] == scene]
+        images = [read_pfm(renders / f"stage6-{scene}-{r['method']}.pfm") for r in mine]
+        height, width = images[0].shape[:2]
+        scale = max(1, 256 // width)
+        fig = plt.figure(figsize=(len(images) * scale * width / 100, (scale * height + 24) / 100), dpi=100)
+        for col, (image, r) in enumerate(zip(images, mine)):
+            ax = fig.add_axes([col / len(images), 0, 1 / len(images), scale * height / (scale * height + 24)])
+            ax.imshow(srgb(image), interpolation="nearest")
+            ax.set_axis_off()
+            unit = "passes" if r["method"] == "sppm" else "spp"
+            fig.text((col + 0.5) / len(images), 1 - 12 / (scale * height + 24),
+                     f"{r['method']}: {r['spp']} {unit}, {float(r['seconds']):.1f} s", ha="center", va="center",
+                     fontsize=8)
+        fig.savefig(root / "docs" / "images" / f"stage6-{scene}.png", dpi=100)
+        plt.close(fig)
+
 
 def main(root):
     charts = pathlib.Path(root) / "docs" / "charts"
@@ -332,12 +382,16 @@ def main(root):
     path_error_vs_time(charts)
     adaptive_error_vs_time(charts)
     path_convergence(charts)
+    transport_error_vs_time(charts)
     renders = pathlib.Path(root) / "build" / "stage4-renders"
     if renders.exists():
         estimator_pictures(pathlib.Path(root), renders)
     cornell = pathlib.Path(root) / "build" / "stage5-renders" / "cornell-box.pfm"
     if cornell.exists():
         cornell_pictures(pathlib.Path(root), cornell)
+    transport = pathlib.Path(root) / "build" / "stage6-renders"
+    if transport.exists():
+        transport_pictures(pathlib.Path(root), transport, charts)
     print(f"charts written to {charts}")
 
 

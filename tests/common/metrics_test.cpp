@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <stdexcept>
 
 namespace rt {
@@ -46,6 +47,18 @@ TEST(Metrics, DownsampleAveragesEachBlock) {
   EXPECT_EQ(small.at(1, 0), Color(2.0f, 0.0f, 1.0f));
   EXPECT_THROW(downsample(image, 3), std::invalid_argument);
   EXPECT_THROW(downsample(image, 0), std::invalid_argument);
+}
+
+TEST(Metrics, RmseOverARectangleCountsItsPixelsAlone) {
+  Image a(4, 3, Color(1.0f)), b(4, 3, Color(1.0f));
+  b.at(1, 1) = Color(3.0f, 1.0f, 1.0f);  // inside the rectangle: one channel of one pixel off by 2
+  b.at(3, 2) = Color(100.0f);            // outside it
+  const PixelRect rect{0, 0, 2, 2};
+  EXPECT_DOUBLE_EQ(rmse(a, b, rect), std::sqrt(4.0 / 12.0));  // 4 pixels x 3 channels
+  EXPECT_DOUBLE_EQ(rmse(a, b, PixelRect{0, 0, 1, 1}), 0.0);
+  EXPECT_THROW(rmse(a, b, PixelRect{2, 0, 5, 1}), std::invalid_argument);  // past the right edge
+  EXPECT_THROW(rmse(a, b, PixelRect{1, 1, 1, 2}), std::invalid_argument);  // empty
+  EXPECT_THROW(rmse(a, Image(4, 4), rect), std::invalid_argument);
 }
 
 TEST(Metrics, SizeMismatchIsAnError) {

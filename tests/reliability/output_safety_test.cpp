@@ -36,8 +36,8 @@ using testing::source_path;
 using testing::write_text;
 using testing::ChildProcess;
 
-const char* const kPrograms[] = {STAGE1_EXE, STAGE2_EXE, STAGE3_EXE, STAGE4_EXE, STAGE5_EXE};
-const char* const kMeshPrograms[] = {STAGE2_EXE, STAGE3_EXE, STAGE4_EXE, STAGE5_EXE};
+const char* const kPrograms[] = {STAGE1_EXE, STAGE2_EXE, STAGE3_EXE, STAGE4_EXE, STAGE5_EXE, STAGE6_EXE};
+const char* const kMeshPrograms[] = {STAGE2_EXE, STAGE3_EXE, STAGE4_EXE, STAGE5_EXE, STAGE6_EXE};
 
 // A scene every stage renders: one diffuse sphere under a point light.
 constexpr const char* kSphere = R"({"camera": {"position": [0, 0, -5], "look_at": [0, 0, 0], "vfov": 30},
@@ -68,6 +68,8 @@ TEST(OutputsSpareInputs, NeitherIsAMeshNorAnImageOfABatch) {
       "materials": {"m": {}}, "shapes": [{"type": "mesh", "file": ")") + mesh + R"(", "material": "m"}]})");
     const std::string out = std::string(mesh) == "mesh.pfm" ? "mesh.pfm" : "part.json";
     for (const char* program : kMeshPrograms) {
+      // Stage 6's default method writes no batch at all (Stage6Cli.WhatAMethodCannotRenderIsOneLine).
+      if (out == "part.json" && std::string(program) == STAGE6_EXE) continue;
       const auto r = run_command(std::string(program) + " --scene " + (dir / "scene.json").string() + " --spp 1 --out " +
                                      (dir / out).string(),
                                  dir);

@@ -30,7 +30,7 @@ using testing::ChildProcess;
 using testing::ScratchDir;
 using testing::source_path;
 
-const char* const kPrograms[] = {STAGE1_EXE, STAGE2_EXE, STAGE3_EXE, STAGE4_EXE, STAGE5_EXE};
+const char* const kPrograms[] = {STAGE1_EXE, STAGE2_EXE, STAGE3_EXE, STAGE4_EXE, STAGE5_EXE, STAGE6_EXE};
 
 // Loads, or is refused with InputError: one line that names the source.
 template <class Load>

@@ -1,0 +1,268 @@
+// Stage 6's bookkeeping: the area densities a random walk stores in both directions, and the MIS
+// weights built from them. Every density a walk stored is recomputed from the vertices' geometry
+// and BSDFs, and on random full paths the weights of all strategies that could make the path sum
+// to 1 and equal the power heuristic's closed form p_s^2 / sum_i p_i^2.
+#include "01-ray-casting/camera_rays.h"
+#include "06-light-transport/bdpt.h"
+#include "06-light-transport/camera_importance.h"
+#include "06-light-transport/light_emission.h"
+
+#include "support/test_support.h"
+
+#include <gtest/gtest.h>
+
+namespace rt {
+namespace {
+
+struct Scene {
+  explicit Scene(const char* file)
+      : description(load_scene(testing::source_path(file))), scene(description), camera(description.camera, 64, 48) {}
+  SceneDescription description;
+  LightingScene scene;
+  Camera camera;
+};
+
+const Scene& cornell() {
+  static const Scene s("assets/scenes/cornell-box.json");
+  return s;
+}
+const Scene& caustic() {
+  static const Scene s("assets/scenes/caustic.json");
+  return s;
+}
+
+// A camera subpath through a random pixel and a light subpath, from Rng(seed, 0, k).
+struct Subpaths {
+  std::vector<PathVertex> camera, light;
+};
+Subpaths subpaths(const Scene& s, std::uint64_t k, int max_vertices = 6) {
+  Rng rng(77, 0, k);
+  Subpaths p;
+  const Ray ray = generate_camera_ray(s.camera, Vec2(rng.uniform() * 64.0f, rng.uniform() * 48.0f));
+  p.camera.push_back(camera_vertex(s.camera));
+  WalkSettings walk;
+  walk.max_vertices = max_vertices;
+  walk.roulette_start = 100;  // every walk runs to max_vertices or until it leaves the scene
+  random_walk(s.scene, ray, Color(1.0f), camera_direction_pdf(s.camera, ray.direction), walk, rng, p.camera);
+  if (const std::optional<LightSubpathStart> start = start_light_subpath(s.scene, rng, walk.offset)) {
+    p.light.push_back(start->origin);
+    walk.mode = Transport::importance;
+    random_walk(s.scene, start->ray, start->beta, start->pdf_w, walk, rng, p.light);
+  }
+  return p;
+}
+
+void expect_relative(double actual, double expected, double tolerance, const std::string& what) {
+  EXPECT_NEAR(actual, expected, tolerance * std::max(std::abs(expected), 1e-30)) << what;
+}
+
+TEST(AreaDensity, SolidAngleTimesCosineOverDistanceSquared) {
+  PathVertex from, to;
+  from.hit.point = Vec3(0.0f);
+  to.hit.point = Vec3(0.0f, 0.0f, 2.0f);
+  to.hit.normal = glm::normalize(Vec3(0.0f, 1.0f, -1.0f));  // 45 degrees to the incoming direction
+  EXPECT_NEAR(to_area_density(0.8f, from, to), 0.8f * std::sqrt(0.5f) / 4.0f, 1e-6f);
+  to.hit.normal = Vec3(0.0f, 0.0f, 1.0f);  // facing away: the density needs |cos|
+  EXPECT_NEAR(to_area_density(0.8f, from, to), 0.2f, 1e-6f);
+  to.hit.normal = Vec3(1.0f, 0.0f, 0.0f);  // edge-on: no area density
+  EXPECT_EQ(to_area_density(0.8f, from, to), 0.0f);
+  // The pinhole has no area: towards it the density is per unit solid angle over distance squared.
+  to.kind = VertexKind::camera;
+  EXPECT_NEAR(to_area_density(0.8f, from, to), 0.2f, 1e-6f);
+}
+
+// What the walk stored against what the geometry says, for every vertex whose neighbours exist.
+void expect_walk_densities(const Scene& s, const std::vector<PathVertex>& path, const std::string& what) {
+  for (size_t i = 1; i < path.size(); ++i) {
+    const PathVertex& before = path[i - 1];
+    const float fwd = vertex_pdf(s.camera, before, i >= 2 ? &path[i - 2] : nullptr, path[i]);
+    expect_relative(path[i].pdf_fwd, fwd, 1e-3, what + " pdf_fwd of vertex " + std::to_string(i));
+    EXPECT_GT(path[i].pdf_fwd, 0.0f) << what << " vertex " << i;
+  }
+  for (size_t i = 0; i + 2 < path.size(); ++i) {
+    const float rev = vertex_pdf(s.camera, path[i + 1], &path[i + 2], path[i]);
+    expect_relative(path[i].pdf_rev, rev, 1e-3, what + " pdf_rev of vertex " + std::to_string(i));
+  }
+}
+
+TEST(RandomWalk, StoresTheDensitiesOfBothDirections) {
+  int long_walks = 0;
+  for (const Scene* s : {&cornell(), &caustic()})
+    for (std::uint64_t k = 0; k < 200; ++k) {
+      const Subpaths p = subpaths(*s, k);
+      expect_walk_densities(*s, p.camera, "camera subpath " + std::to_string(k));
+      expect_walk_densities(*s, p.light, "light subpath " + std::to_string(k));
+      long_walks += p.camera.size() >= 4 && p.light.size() >= 4;
+      if (HasFailure()) return;
+    }
+  EXPECT_GT(long_walks, 40);  // the check saw many deep vertices, not only first hits
+}
+
+TEST(RandomWalk, ThroughputIsTheProductOfTheSamplingWeights) {
+  // In the Cornell box every surface is Lambertian: a cosine-sampled bounce has weight = albedo, so
+  // the camera subpath's beta at vertex i is the product of the albedos before it (and the light
+  // subpath's the emitted flux over the choice times the same product).
+  const Scene& s = cornell();
+  size_t vertices = 0;
+  for (std::uint64_t k = 0; k < 50; ++k) {
+    const Subpaths p = subpaths(s, k);
+    vertices += p.camera.size() + p.light.size();
+    Color beta(1.0f);
+    for (size_t i = 1; i < p.camera.size(); ++i) {
+      EXPECT_NEAR(p.camera[i].beta.y, beta.y, 1e-4f * beta.y) << k << ", " << i;
+      beta *= s.scene.material(p.camera[i].hit).albedo;
+    }
+    if (p.light.size() < 2) continue;
+    const AreaEmitter& e = s.scene.emitters()[size_t(p.light[0].emitter)];
+    Color flux = e.radiance * (kPi * e.area() / s.scene.emitter_distribution().pmf(p.light[0].emitter));
+    for (size_t i = 1; i < p.light.size(); ++i) {
+      EXPECT_NEAR(p.light[i].beta.y, flux.y, 1e-3f * flux.y) << k << ", light " << i;
+      flux *= s.scene.material(p.light[i].hit).albedo;
+    }
+  }
+  EXPECT_GT(vertices, 300u);  // 50 camera and 50 light subpaths of up to 6 vertices: most go deep
+}
+
+TEST(ImportanceCorrection, GlassRefractionCarriesFluxUnsqueezed) {
+  PathVertex v;
+  v.hit.normal = v.hit.shading_normal = Vec3(0.0f, 0.0f, 1.0f);
+  v.at = ShadingPoint{v.hit, Bsdf(DielectricBsdf{1.0f, 1.5f}), Frame::from_normal(v.hit.normal), Vec3(0, 0, 1)};
+  const BsdfSample refracted{Vec3(0.0f, 0.0f, -1.0f), Color(1.0f / 2.25f), 0.96f, true};
+  const BsdfSample reflected{Vec3(0.0f, 0.0f, 1.0f), Color(1.0f), 0.04f, true};
+  // Radiance into glass of index 1.5 is squeezed by (1 / 1.5)^2; flux is not: the factor undoes it.
+  EXPECT_NEAR(importance_correction(v, Vec3(0, 0, 1), Vec3(0, 0, -1), refracted), 2.25f, 1e-5f);
+  EXPECT_EQ(importance_correction(v, Vec3(0, 0, 1), Vec3(0, 0, 1), reflected), 1.0f);
+  // A shading normal tilted from the geometric one: |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|).
+  PathVertex tilted;
+  tilted.hit.normal = Vec3(0.0f, 0.0f, 1.0f);
+  tilted.hit.shading_normal = glm::normalize(Vec3(0.3f, 0.0f, 1.0f));
+  tilted.at = ShadingPoint{tilted.hit, Bsdf(LambertBrdf{Color(0.5f)}), Frame::from_normal(tilted.hit.shading_normal),
+                           Vec3(0, 0, 1)};
+  const Vec3 wo = glm::normalize(Vec3(1.0f, 0.0f, 1.0f)), wi = glm::normalize(Vec3(-0.2f, 0.5f, 1.0f));
+  const BsdfSample diffuse{Vec3(0, 0, 1), Color(0.5f), 0.3f, false};
+  const float expected = std::abs(glm::dot(wo, tilted.hit.shading_normal)) * std::abs(wi.z) /
+                         (std::abs(wo.z) * std::abs(glm::dot(wi, tilted.hit.shading_normal)));
+  EXPECT_NEAR(importance_correction(tilted, wo, wi, diffuse), expected, 1e-5f);
+  EXPECT_NE(expected, 1.0f);
+}
+
+// A full path x_0 (camera) ... x_k (on a light), each vertex with its density from either side.
+struct FullPath {
+  std::vector<const PathVertex*> x;
+  std::vector<double> from_camera, from_light;
+};
+
+FullPath join(const Scene& s, const Subpaths& p, int sl, int tc, const PathVertex* sampled_light) {
+  FullPath f;
+  for (int i = 0; i < tc; ++i) f.x.push_back(&p.camera[size_t(i)]);
+  for (int i = sl - 1; i >= 0; --i) f.x.push_back(i == 0 && sampled_light ? sampled_light : &p.light[size_t(i)]);
+  const size_t n = f.x.size();
+  f.from_camera.assign(n, 1.0);
+  f.from_light.assign(n, 1.0);
+  for (size_t i = 1; i < n; ++i) f.from_camera[i] = vertex_pdf(s.camera, *f.x[i - 1], i >= 2 ? f.x[i - 2] : nullptr, *f.x[i]);
+  f.from_light[n - 1] = light_origin_pdf(s.scene, *f.x[n - 1]);
+  if (n >= 2) f.from_light[n - 2] = light_emission_pdf(s.scene, *f.x[n - 1], *f.x[n - 2]);
+  for (size_t i = 0; i + 2 < n; ++i) f.from_light[i] = vertex_pdf(s.camera, *f.x[i + 1], f.x[i + 2], *f.x[i]);
+  return f;
+}
+
+// Strategy (s, t) of a full path exists when t >= 1 and neither end of its connection is a delta.
+bool strategy_exists(const FullPath& f, int s) {
+  const int t = int(f.x.size()) - s;
+  if (t < 1) return false;
+  if (s == 0) return f.x.back()->emitter >= 0;
+  return !f.x[size_t(t - 1)]->delta && !f.x[size_t(t)]->delta;
+}
+
+// The weight the reference densities give strategy s through stage 6's strategy_weight.
+float reference_weight(const FullPath& f, int s) {
+  const int n = int(f.x.size()), t = n - s;
+  std::vector<VertexDensity> camera, light;
+  for (int i = 0; i < t; ++i)
+    camera.push_back({float(f.from_camera[size_t(i)]), float(f.from_light[size_t(i)]), f.x[size_t(i)]->delta});
+  for (int j = 0; j < s; ++j) {
+    const size_t i = size_t(n - 1 - j);
+    light.push_back({float(f.from_light[i]), float(f.from_camera[i]), f.x[i]->delta});
+  }
+  if (t >= 1) camera.back().delta = false;
+  if (s >= 1) light.back().delta = false;
+  return strategy_weight(camera, light);
+}
+
+TEST(MisWeights, EveryStrategyOfAPathSumsToOneAndTheRendererAgrees) {
+  int paths = 0, with_delta = 0;
+  for (const Scene* s : {&cornell(), &caustic()})
+    for (std::uint64_t k = 0; k < 300; ++k) {
+      const Subpaths p = subpaths(*s, k);
+      if (p.light.empty()) continue;
+      for (int t = 1; t <= int(p.camera.size()); ++t)
+        for (int sl = 0; sl <= int(p.light.size()); ++sl) {
+          if (sl + t < 2) continue;
+          const PathVertex* sampled = sl == 1 ? &p.light[0] : nullptr;
+          const StrategySample r = connect_strategy(s->scene, s->camera, p.camera, p.light, sl, t, sampled, {});
+          if (r.value == Color(0.0f)) continue;  // no path: nothing to weigh
+          const FullPath f = join(*s, p, sl, t, sampled);
+          double sum = 0.0;
+          for (int other = 0; other <= int(f.x.size()); ++other)
+            if (strategy_exists(f, other)) sum += reference_weight(f, other);
+          const std::string what = "path " + std::to_string(k) + ", s = " + std::to_string(sl) + ", t = " + std::to_string(t);
+          EXPECT_NEAR(sum, 1.0, 1e-4) << what;
+          // The renderer reads the densities its walks stored, computed from the sampled directions;
+          // the reference recomputes them from the rounded vertex positions. Each pair agrees within
+          // 1e-3 (RandomWalk.StoresTheDensitiesOfBothDirections) and a weight is a ratio of products
+          // of up to s + t of them on each side.
+          const float renderer = mis_weight(s->scene, s->camera, p.camera, p.light, sl, t, sampled);
+          EXPECT_NEAR(renderer, reference_weight(f, sl), 2e-3f * float(sl + t) * std::max(renderer, 1e-3f)) << what;
+          ++paths;
+          for (const PathVertex* v : f.x) with_delta += v->delta;
+          if (HasFailure()) return;
+        }
+    }
+  EXPECT_GT(paths, 1000);
+  EXPECT_GT(with_delta, 50);  // glass vertices took part
+}
+
+TEST(MisWeights, ThePowerHeuristicsClosedFormOnDiffusePaths) {
+  // Without delta vertices every strategy exists and p_s is the plain product of densities.
+  const Scene& s = cornell();
+  int checked = 0;
+  for (std::uint64_t k = 0; k < 200; ++k) {
+    const Subpaths p = subpaths(s, k, 4);
+    if (p.camera.size() < 3 || p.light.size() < 2) continue;
+    if (connect_strategy(s.scene, s.camera, p.camera, p.light, 2, 3, nullptr, {}).value == Color(0.0f)) continue;
+    const FullPath f = join(s, p, 2, 3, nullptr);  // 5 vertices: strategies s = 0 ... 4
+    std::vector<double> density;
+    for (int sl = 0; sl <= 4; ++sl) {
+      double d = 1.0;
+      for (int i = 0; i < 5; ++i) d *= i < 5 - sl ? f.from_camera[size_t(i)] : f.from_light[size_t(i)];
+      density.push_back(d);
+    }
+    double sum2 = 0.0;
+    for (const double d : density) sum2 += d * d;
+    for (int sl = 0; sl <= 4; ++sl)
+      EXPECT_NEAR(reference_weight(f, sl), density[size_t(sl)] * density[size_t(sl)] / sum2, 1e-4) << k << ", " << sl;
+    ++checked;
+  }
+  EXPECT_GT(checked, 20);
+}
+
+TEST(MisWeights, ByHandOnAThreeVertexPath) {
+  // z_0 (pinhole), z_1, y_0 with made-up densities: strategies s = 0, 1, 2 have densities
+  // p_0 = a1 b2, p_1 = a1 c2, p_2 = c1 c2 (a: camera side, c: light side).
+  const float a1 = 2.0f, b2 = 3.0f, c1 = 0.5f, c2 = 4.0f;
+  const double p0 = a1 * b2, p1 = a1 * c2, p2 = c1 * c2, sum = p0 * p0 + p1 * p1 + p2 * p2;
+  const VertexDensity z0{1.0f, 0.0f, false}, z1_t2{a1, c1, false};
+  // s = 1, t = 2: z_1 (fwd a1, rev c1); y_0 (fwd c2, rev b2).
+  EXPECT_NEAR(strategy_weight(std::vector{z0, z1_t2}, std::vector{VertexDensity{c2, b2, false}}), p1 * p1 / sum, 1e-6);
+  // s = 0, t = 3: y_0 is the camera's third vertex (fwd b2, rev c2).
+  EXPECT_NEAR(strategy_weight(std::vector{z0, z1_t2, VertexDensity{b2, c2, false}}, {}), p0 * p0 / sum, 1e-6);
+  // s = 2, t = 1: z_1 on the light side (fwd c1, rev a1).
+  EXPECT_NEAR(strategy_weight(std::vector{z0}, std::vector{VertexDensity{c2, b2, false}, VertexDensity{c1, a1, false}}),
+              p2 * p2 / sum, 1e-6);
+  // A delta z_1 leaves only the strategy that never connects at it: s = 0 takes all.
+  const VertexDensity z1_delta{0.0f, 0.0f, true};
+  EXPECT_NEAR(strategy_weight(std::vector{z0, z1_delta, VertexDensity{b2, c2, false}}, {}), 1.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace rt
