@@ -13,6 +13,7 @@
 #include "fuzz/batch_inputs.h"
 #include "fuzz/image_input.h"
 #include "reliability/child_process.h"
+#include "support/glowing_room.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
@@ -205,16 +206,6 @@ TEST(Interrupt, PartialImageIsNormalizedPerPixel) {
   EXPECT_GE(progress.done(), 20000u);
 }
 
-// A closed room whose walls glow: every sample of every pixel is lit, so any finished sample shows.
-constexpr const char* kGlowingRoom = R"({"camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "vfov": 60},
-  "materials": {"wall": {"albedo": [0.5, 0.5, 0.5], "emission": [1, 1, 1]}},
-  "shapes": [
-    {"type": "quad", "material": "wall", "vertices": [[-1,-1,1], [1,-1,1], [1,-1,-1], [-1,-1,-1]]},
-    {"type": "quad", "material": "wall", "vertices": [[1,1,-1], [1,1,1], [-1,1,1], [-1,1,-1]]},
-    {"type": "quad", "material": "wall", "vertices": [[-1,1,-1], [-1,1,1], [-1,-1,1], [-1,-1,-1]]},
-    {"type": "quad", "material": "wall", "vertices": [[1,-1,1], [1,1,1], [1,1,-1], [1,-1,-1]]},
-    {"type": "quad", "material": "wall", "vertices": [[1,-1,-1], [1,1,-1], [-1,1,-1], [-1,-1,-1]]},
-    {"type": "quad", "material": "wall", "vertices": [[-1,1,1], [1,1,1], [1,-1,1], [-1,-1,1]]}]})";
 
 // stage5 on the glowing room at 2^20 samples per pixel: hours, unless stopped.
 struct LongRender {
@@ -226,7 +217,7 @@ struct LongRender {
         child({STAGE5_EXE, "--scene", write_scene(d), "--width", "64", "--height", "64", "--spp", "1048576",
                "--threads", "2", "--out", out.string()}, d / "stdout.txt", d / "stderr.txt") {}
   static std::string write_scene(ScratchDir& d) {
-    testing::write_text(d / "room.json", kGlowingRoom);
+    testing::write_text(d / "room.json", testing::kGlowingRoom);
     return (d / "room.json").string();
   }
 };

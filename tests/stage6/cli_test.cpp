@@ -5,6 +5,7 @@
 #include "common/metrics.h"
 
 #include "reliability/child_process.h"
+#include "support/glowing_room.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
@@ -134,21 +135,11 @@ TEST(Stage6Cli, PathTracingSplitsIntoBatchesThatMerge) {
   EXPECT_TRUE(read_pfm(dir / "merged.pfm") == read_pfm(dir / "whole.pfm"));
 }
 
-// A closed room whose walls glow: every pixel is lit from the first pass.
-constexpr const char* kGlowingRoom = R"({"camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "vfov": 60},
-  "materials": {"wall": {"albedo": [0.5, 0.5, 0.5], "emission": [1, 1, 1]}},
-  "shapes": [
-    {"type": "quad", "material": "wall", "vertices": [[-1,-1,1], [1,-1,1], [1,-1,-1], [-1,-1,-1]]},
-    {"type": "quad", "material": "wall", "vertices": [[1,1,-1], [1,1,1], [-1,1,1], [-1,1,-1]]},
-    {"type": "quad", "material": "wall", "vertices": [[-1,1,-1], [-1,1,1], [-1,-1,1], [-1,-1,-1]]},
-    {"type": "quad", "material": "wall", "vertices": [[1,-1,1], [1,1,1], [1,1,-1], [1,-1,-1]]},
-    {"type": "quad", "material": "wall", "vertices": [[1,-1,-1], [1,1,-1], [-1,1,-1], [-1,-1,-1]]},
-    {"type": "quad", "material": "wall", "vertices": [[-1,1,1], [1,1,1], [1,-1,1], [-1,-1,1]]}]})";
 
 TEST(Stage6Cli, CtrlCKeepsWhatWasRendered) {
   for (const char* m : {"bdpt", "sppm"}) {
     ScratchDir dir;
-    testing::write_text(dir / "room.json", kGlowingRoom);
+    testing::write_text(dir / "room.json", testing::kGlowingRoom);
     const auto out = dir / "partial.pfm";
     testing::ChildProcess child({STAGE6_EXE, "--scene", (dir / "room.json").string(), "--width", "48", "--height", "48", "--spp",
                         "1048576", "--photons", "2000", "--threads", "2", "--method", m, "--out", out.string()},

@@ -24,16 +24,11 @@ const Cornell& cornell() {
   return c;
 }
 
-// Path tracing's image of the paths of exactly k edges: stage 5's naive path tracer (BRDF
-// sampling, no roulette) run to k - 1 bounces, minus the same path run to k - 2. The same numbers
-// make the same path, so their difference is the path's k-edge term alone, and samples are
-// independent, so the region's standard error comes from their spread.
-std::vector<RegionEstimate> path_traced_length(int k, int spp) {
-  const Cornell& c = cornell();
-  PathOptions longer, shorter;
-  longer.integrator = shorter.integrator = PathIntegrator::naive;
-  longer.max_depth = k - 1;
-  shorter.max_depth = k - 2;
+// Per quadrant, the mean and standard error of `spp` independent samples per pixel, sample(x, y,
+// i) giving sample i of pixel (x, y). Over the region's pixels: the mean of their means, whose
+// spread includes the spread between pixels, so the error is conservative.
+template <class SampleFn>
+std::vector<RegionEstimate> quadrant_estimates(int spp, SampleFn&& sample) {
   std::vector<RegionEstimate> out;
   for (const PixelRect& region : kQuadrants) {
     double sum = 0.0, sum2 = 0.0;
@@ -41,23 +36,36 @@ std::vector<RegionEstimate> path_traced_length(int k, int spp) {
     for (int y = region.y0; y < region.y1; ++y)
       for (int x = region.x0; x < region.x1; ++x)
         for (int i = 0; i < spp; ++i) {
-          const std::uint64_t pixel = std::uint64_t(y * kSize + x);
-          Rng a(9, pixel, std::uint64_t(i)), b(9, pixel, std::uint64_t(i));
-          const Vec2 film = Vec2(float(x), float(y)) + a.uniform2();
-          b.uniform2();
-          const Ray ray = generate_camera_ray(c.camera, film);
-          double v = grey(DVec3(path_radiance(c.scene, ray, longer, a)));
-          if (k >= 2) v -= grey(DVec3(path_radiance(c.scene, ray, shorter, b)));
+          const double v = sample(x, y, i);
           sum += v;
           sum2 += v * v;
           ++n;
         }
     const double mean = sum / double(n);
-    // Over the region's pixels: the mean of their means, whose spread includes the spread between
-    // pixels, so the error is conservative.
     out.push_back({mean, std::sqrt(std::max(0.0, sum2 / double(n) - mean * mean) / double(n))});
   }
   return out;
+}
+
+// Path tracing's image of the paths of exactly k edges: stage 5's naive path tracer (BRDF
+// sampling, no roulette) run to k - 1 bounces, minus the same path run to k - 2. The same numbers
+// make the same path, so their difference is the path's k-edge term alone.
+std::vector<RegionEstimate> path_traced_length(int k, int spp) {
+  const Cornell& c = cornell();
+  PathOptions longer, shorter;
+  longer.integrator = shorter.integrator = PathIntegrator::naive;
+  longer.max_depth = k - 1;
+  shorter.max_depth = k - 2;
+  return quadrant_estimates(spp, [&](int x, int y, int i) {
+    const std::uint64_t pixel = std::uint64_t(y * kSize + x);
+    Rng a(9, pixel, std::uint64_t(i)), b(9, pixel, std::uint64_t(i));
+    const Vec2 film = Vec2(float(x), float(y)) + a.uniform2();
+    b.uniform2();
+    const Ray ray = generate_camera_ray(c.camera, film);
+    double v = grey(DVec3(path_radiance(c.scene, ray, longer, a)));
+    if (k >= 2) v -= grey(DVec3(path_radiance(c.scene, ray, shorter, b)));
+    return v;
+  });
 }
 
 void expect_strategies_of_length(int k, int pt_spp, int spp, int runs) {
@@ -88,24 +96,12 @@ TEST(BdptStrategies, AllTogetherWeightedEqualTheirSum) {
   // MIS keeps the expectation: the weighted render of every strategy agrees with path tracing's
   // image of every length (stage 5's MIS integrator), on the quadrants.
   const Cornell& c = cornell();
-  PathOptions mis;
-  std::vector<RegionEstimate> expected;
-  for (const PixelRect& region : kQuadrants) {
-    double sum = 0.0, sum2 = 0.0;
-    long n = 0;
-    for (int y = region.y0; y < region.y1; ++y)
-      for (int x = region.x0; x < region.x1; ++x)
-        for (int i = 0; i < 1024; ++i) {
-          Rng rng(10, std::uint64_t(y * kSize + x), std::uint64_t(i));
-          const Ray ray = generate_camera_ray(c.camera, Vec2(float(x), float(y)) + rng.uniform2());
-          const double v = grey(DVec3(path_radiance(c.scene, ray, mis, rng)));
-          sum += v;
-          sum2 += v * v;
-          ++n;
-        }
-    const double mean = sum / double(n);
-    expected.push_back({mean, std::sqrt(std::max(0.0, sum2 / double(n) - mean * mean) / double(n))});
-  }
+  const PathOptions mis;
+  const std::vector<RegionEstimate> expected = quadrant_estimates(1024, [&](int x, int y, int i) {
+    Rng rng(10, std::uint64_t(y * kSize + x), std::uint64_t(i));
+    const Ray ray = generate_camera_ray(c.camera, Vec2(float(x), float(y)) + rng.uniform2());
+    return grey(DVec3(path_radiance(c.scene, ray, mis, rng)));
+  });
   const std::vector<RegionEstimate> found = region_estimates(
       [&](std::uint64_t seed) { return render_method(c.scene, c.camera, method(TransportMethod::bdpt), 64, seed); },
       kQuadrants, 8);
