@@ -265,5 +265,24 @@ TEST(ScaleOutRecipes, ThePlainShellLoopRendersBatchesThatMerge) {
   EXPECT_NE(r.err.find("render-loop.sh: batch 1 failed: stage5: error: --integrator"), std::string::npos) << r.err;
 }
 
+// Stage 6's path tracer is stage 5's: its batches merge into its render. (Its other methods refuse
+// batches and crops: Stage6Cli.WhatAMethodCannotRenderIsOneLine.)
+TEST(ScaleOutPrograms, Stage6PathTracingSplitsIntoSampleBatchesThatMerge) {
+  ScratchDir dir;
+  const StageProgram stage6{"stage6", STAGE6_EXE, "assets/scenes/cornell-box.json"};
+  ASSERT_EQ(run_command(command(stage6, "--method pt --spp 4 --out " + (dir / "whole.pfm").string()), dir).exit_code, 0);
+  for (const char* range : {"0:3", "3:4"}) {
+    const auto r = run_command(command(stage6, std::string("--method pt --sample-range ") + range + " --out " +
+                                                   (dir / (std::string("part-") + range[0] + ".json")).string()),
+                               dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const auto r = run_command(merge("--out " + (dir / "merged.pfm").string() + " " + (dir / "part-0.json").string() + " " +
+                                   (dir / "part-3.json").string()),
+                             dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_equal_up_to_summation_order(read_pfm(dir / "merged.pfm"), read_pfm(dir / "whole.pfm"), 4, "stage6");
+}
+
 }  // namespace
 }  // namespace rt
