@@ -37,7 +37,7 @@ std::optional<RectangleEmitter> rectangle_of(const Quad& quad, RectangleSampling
 // The radius of a sphere around every bounded primitive (half its box's diagonal); 1 for a scene
 // of planes alone.
 template <class Set>
-float bounding_radius_of(const Set& primitives) {
+float bounding_radius(const Set& primitives) {
   Aabb box;
   primitives.for_each_kind([&](auto k) {
     using Kind = typename Set::template Kind<k>;
@@ -57,7 +57,6 @@ LightingScene::LightingScene(const SceneDescription& description, const Lighting
                                   : bvh_aggregate_factory<LightingPrimitives>(BvhBuildOptions{.wide = true}),
                    "stage 4 renders spheres, planes, triangles, quads, meshes and disks (tori are stage 1's "
                    "implicit surfaces)") {
-  bounding_radius_ = bounding_radius_of(primitives());
   shape_emitters_.assign(description.shapes.size(), ShapeEmitters{});
   for (size_t i = 0; i < description.shapes.size(); ++i) {
     const Shape& shape = description.shapes[i];
@@ -96,7 +95,7 @@ LightingScene::LightingScene(const SceneDescription& description, const Lighting
   }
   if (description.environment) {
     environment_.emplace(*description.environment, options.environment_sampling);
-    power.push_back(environment_->power(bounding_radius_));
+    power.push_back(environment_->power(bounding_radius(primitives())));
     total += double(power.back());
     if (!std::isfinite(power.back()) || total > double(std::numeric_limits<float>::max()))
       throw InputError(description.source + ": /environment: its power through the scene's bounding sphere "

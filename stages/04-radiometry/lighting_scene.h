@@ -64,8 +64,6 @@ class LightingScene : public SurfaceScene<LightingPrimitives> {
   int environment_index() const { return environment_ ? int(emitters_.size()) : -1; }
   // The emitter a hit landed on, or -1: the triangle's own emitter for meshes and other quads.
   int emitter_index(const Hit& hit) const;
-  // Half the diagonal of the box around every bounded shape (1 for planes alone): the scene's size.
-  float bounding_radius() const { return bounding_radius_; }
 
  private:
   std::vector<AreaEmitter> emitters_;
@@ -76,7 +74,6 @@ class LightingScene : public SurfaceScene<LightingPrimitives> {
   };
   std::vector<ShapeEmitters> shape_emitters_;  // per scene-file shape
   DiscreteDistribution emitter_distribution_;
-  float bounding_radius_ = 1.0f;
 };
 
 }  // namespace rt

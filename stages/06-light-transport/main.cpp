@@ -43,8 +43,8 @@ int main(int argc, char** argv) {
         app.add_option("--photons", transport.sppm.photons_per_pass, "sppm: photons per pass (default 100000)")
             ->transform(decimal(1, 100000000));
         app.add_option("--radius", transport.sppm.initial_radius,
-                       "sppm: the initial gather radius in scene units (default: 1/200 of the scene's bounding "
-                       "radius)")
+                       "sppm: the initial gather radius in scene units (default: one pixel footprint at each "
+                       "pixel's first visible point)")
             ->transform(finite_range(1e-30, 1e30));
         app.add_option("--alpha", transport.sppm.alpha,
                        "sppm: the share of new photons each pass keeps, in (0, 1] (default 2/3)")
