@@ -124,20 +124,30 @@ StrategySample connect_strategy(const LightingScene& scene, const Camera& camera
   // END TASK
 }
 
+namespace {
+
+// The light vertex y_0 at a point on an emitter sampled with area density pdf_position (the choice
+// included): beta = Le / pdf_position, what every strategy multiplies by the light's side.
+PathVertex light_vertex(const EmitterPoint& point, Color radiance, float pdf_position) {
+  PathVertex v;
+  v.kind = VertexKind::light;
+  v.hit = point.hit;
+  v.emitter = point.emitter;
+  v.pdf_fwd = pdf_position;
+  v.beta = radiance / pdf_position;
+  return v;
+}
+
+}  // namespace
+
 std::optional<PathVertex> sample_light_vertex(const LightingScene& scene, float u_choice, Vec2 u) {
   if (scene.emitter_distribution().empty()) return std::nullopt;
   const int index = scene.emitter_distribution().sample(u_choice).index;
   if (index < 0 || size_t(index) >= scene.emitters().size()) return std::nullopt;
   const AreaEmitter& emitter = scene.emitters()[size_t(index)];
-  const EmitterPoint point = sample_emitter_point(emitter, index, u);
-  PathVertex v;
-  v.kind = VertexKind::light;
-  v.hit = point.hit;
-  v.emitter = index;
-  v.pdf_fwd = emission_position_pdf(scene, index);
-  if (!(v.pdf_fwd > 0.0f)) return std::nullopt;
-  v.beta = emitter.radiance / v.pdf_fwd;
-  return v;
+  const float pdf_position = emission_position_pdf(scene, index);
+  if (!(pdf_position > 0.0f)) return std::nullopt;
+  return light_vertex(sample_emitter_point(emitter, index, u), emitter.radiance, pdf_position);
 }
 
 template <class Numbers>
@@ -149,11 +159,7 @@ std::optional<LightSubpathStart> start_light_subpath(const LightingScene& scene,
   const std::optional<EmissionSample> e = sample_emission(scene, u_choice, u_position, u_direction);
   if (!e || !(e->pdf_position > 0.0f)) return std::nullopt;
   LightSubpathStart start;
-  start.origin.kind = VertexKind::light;
-  start.origin.hit = e->origin.hit;
-  start.origin.emitter = e->origin.emitter;
-  start.origin.pdf_fwd = e->pdf_position;
-  start.origin.beta = e->radiance / e->pdf_position;
+  start.origin = light_vertex(e->origin, e->radiance, e->pdf_position);
   start.ray = spawn_ray(e->origin.hit, e->direction, offset);
   const float cos_theta = glm::dot(e->origin.hit.normal, e->direction);
   start.beta = start.origin.beta * (cos_theta / e->pdf_direction);
