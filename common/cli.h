@@ -1,11 +1,10 @@
 // The command line every stage executable shares (docs/design.md): --scene --spp --out --width --height
 // --threads --seed, plus the stage's own flags. Exit codes: 0 ok, 1 bad input, 2 bad usage; every
-// failure is one line on stderr.
+// failure is one line on stderr. The options themselves are plain values (common/options.h); only
+// the files that parse a command line include this header, and with it CLI11.
 #pragma once
 
-#include "common/image_io.h"
-#include "common/memory_limit.h"
-#include "common/scene.h"
+#include "common/options.h"
 
 #include <CLI/CLI.hpp>
 
@@ -13,42 +12,8 @@
 #include <functional>
 #include <optional>
 #include <string>
-#include <vector>
 
 namespace rt {
-
-// The first sample and the number of samples a --sample-range asks for.
-struct SampleRangeFlag {
-  int first = 0, count = 0;
-};
-
-struct CommonOptions {
-  std::string scene;
-  std::string out;  // .png or .pfm: the image; .json: a sample batch (common/sample_batch.h)
-  std::optional<int> spp, width, height;
-  std::optional<std::uint64_t> seed;
-  std::optional<int> max_depth;  // registered by the stages that recurse (add_max_depth_flag)
-  int threads = 0;  // 0 = all cores
-  // Scale-out (docs/scale-out.md): "a:b" renders samples [a, b) of each pixel; "x0:x1,y0:y1" only
-  // the pixels [x0, x1) x [y0, y1).
-  std::optional<std::string> sample_range, crop;
-  std::optional<std::string> filter;  // --filter: a pixel filter's name (kPixelFilterNames)
-  ImageEncoding encoding;  // --exposure --tone --white --gamma --exr-half: how an image file encodes
-  // The stage's own flags that shape the image, "--name=value ..." with defaults filled in, set by
-  // run_stage_program: what a sample batch records so that only batches of one render merge.
-  std::string image_flags;
-
-  // The scene's render block with the command-line values put over it.
-  // Throws UsageError for a sample range or crop window that is malformed or outside the image, or
-  // for an output that is one of the scene's own files (the scene, a mesh); and InputError, with
-  // the figures, for an image or a scene this process could not hold (common/memory_limit.h).
-  RenderSettings settings_for(const SceneDescription& scene) const;
-};
-
-// "a:b" with 0 <= a < b <= kMaxSpp; "x0:x1,y0:y1" inside a width x height image with x0 < x1 and
-// y0 < y1. Throw UsageError naming the flag and the problem.
-SampleRangeFlag parse_sample_range(const std::string& text);
-PixelRect parse_crop(const std::string& text, int width, int height);
 
 // A CLI11 check for an integer flag: decimal digits only (CLI11 itself reads "010" as octal 8 and
 // "0x10" as 16) with a value in [lo, hi], exact up to 2^64 - 1; the text is rewritten without its
@@ -84,11 +49,5 @@ std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv, cons
 // (the scene, say) and the limit this process runs under.
 int run_reporting_errors(const std::string& program, const std::function<void()>& body,
                          const std::string& subject = "");
-
-// The files an output writes: OUT itself, or for a sample batch NAME.json, NAME.sum.pfm and
-// NAME.count.pfm (common/sample_batch.h).
-std::vector<std::string> output_files(const std::string& out);
-// Throws UsageError when an output file is one of `inputs`: writing it would destroy the input.
-void require_outputs_spare_inputs(const std::string& out, const std::vector<std::string>& inputs);
 
 }  // namespace rt

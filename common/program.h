@@ -3,7 +3,7 @@
 // (common/sample_batch.h), atomically, and print one line of figures.
 #pragma once
 
-#include "common/cli.h"
+#include "common/options.h"
 #include "common/progress.h"
 #include "common/sample_sums.h"
 #include "common/scene.h"

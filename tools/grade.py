@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Grades a submission (a student's tree, the starter, or this one) for one stage or all.
 
-    tools/grade.py TREE [--stage N ...] [--out DIR] [--work DIR] [--jobs N] [--no-hidden]
-                   [--time-cap S] [--test-timeout S] [--render-timeout S] [--memory-limit MIB]
+    tools/grade.py --prepare PREPARED [--jobs N] [--container-is-sandbox] [--sandbox-user UID]
+    tools/grade.py TREE [--stage N ...] [--out DIR] [--prepared PREPARED] [--work DIR] [--jobs N]
+                   [--no-hidden] [--time-cap S] [--test-timeout S] [--memory-limit MIB]
                    [--container-is-sandbox] [--sandbox-user UID]
     tools/grade.py --make-references [--build DIR]
     tools/grade.py --list-tests [--build DIR]
@@ -19,6 +20,12 @@ the sandbox and atomically, DIR/results.json (Gradescope's autograder format), D
 DIR/report.html and DIR/outcomes.json, and prints the total. Exit code 0 when grading ran (whatever
 the score), 1 when it could not (no such tree, no cmake, no sandbox).
 
+--prepare builds the instructor's tree once, every task as the starter's placeholder, into
+PREPARED (about three minutes on 2 cores); --prepared PREPARED then grades a submission by
+compiling only its files that differ from the starter's against that build and relinking (a class
+shares one prepared folder; each submission works on a copy). Without --prepared, a submission's
+whole tree is built in its work folder. report.md gives each step's time.
+
 --make-references renders the render checks' references with this tree's own release build
 (build/release by default) into grading/references/; --list-tests writes grading/tests.json from
 it. docs/instructors.md has the whole workflow.
@@ -30,10 +37,14 @@ import pathlib
 import shutil
 import sys
 import tempfile
+import time
 
 try:
     import numpy  # noqa: F401  (the render checks' statistics)
 except ModuleNotFoundError:
+    # A python3 earlier on PATH (pyenv, a virtual environment) may lack numpy; Debian's has it.
+    if os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3") and os.path.exists("/usr/bin/python3"):
+        os.execv("/usr/bin/python3", ["/usr/bin/python3", *sys.argv])
     sys.exit(f"tools/grade.py: this Python ({sys.executable}) has no numpy; run the grader with "
              "Debian's /usr/bin/python3, which has it once tools/setup.sh installed python3-numpy")
 
@@ -44,11 +55,26 @@ MANIFEST = ROOT / "grading" / "manifest.json"
 TESTS = ROOT / "grading" / "tests.json"
 
 
+class StepTimes:
+    """How long each step of a grading took, for report.md."""
+
+    def __init__(self):
+        self.steps = []
+
+    def timed(self, name, function, *arguments):
+        start = time.monotonic()
+        try:
+            return function(*arguments)
+        finally:
+            self.steps.append([name, time.monotonic() - start])
+
+
 def grade(tree, stages, out, work, options):
     spec = manifest.load(MANIFEST)
     listed = manifest.load_tests(TESTS, options.hidden)
     stages = stages or sorted(spec["stages"])
     deadline = sandbox.Deadline(options.time_cap)
+    times = StepTimes()
     work = pathlib.Path(work)
     work.mkdir(parents=True, exist_ok=True)
     work.chmod(0o755)
@@ -56,13 +82,16 @@ def grade(tree, stages, out, work, options):
                           options.sandbox_user)
     box.check(work)
     taken = submission.take(tree, ROOT, spec)
-    builder = build.Builder(box, work, options.jobs, deadline)
+    if options.prepared:
+        times.timed("copy the prepared build", build.copy_prepared, options.prepared, work)
+    builder = build.Builder(box, work, options.jobs, deadline, seen_at=options.prepared)
     build.prepare_tree(taken, ROOT, builder.source, options.hidden)
     log = work / "build.log"
     log.write_text("")
-    configured = builder.configure(log)
+    configured = times.timed("configure", builder.configure, log)
     grade = {"tree": str(tree), "groups": [], "renders": [], "tests": [], "unclaimed": [], "build_problems": {},
-             "hidden_build_problems": {}, "notes": taken.notes, "flags": taken.flags, "time_cap": options.time_cap}
+             "hidden_build_problems": {}, "notes": taken.notes, "flags": taken.flags, "time_cap": options.time_cap,
+             "steps": times.steps, "prepared": bool(options.prepared)}
     for stage in stages:
         stage_spec = spec["stages"][stage]
         problem = None
@@ -70,18 +99,20 @@ def grade(tree, stages, out, work, options):
         stage_log.write_text("")
         if not configured:
             problem = "cmake could not configure the tree:\n" + files.tail_of(log, 3000)
-        elif not builder.build_stage(stage, stage_log):
+        elif not times.timed(f"stage {stage}: build", builder.build_stage, stage, stage_log):
             problem = "the stage did not build:\n" + files.tail_of(stage_log, 3000)
         if problem:
             grade["build_problems"][stage] = problem
         tests = [t for t in listed.get(stage, []) if not t["program"].endswith("_hidden_tests")]
         hidden_tests = [t for t in listed.get(stage, []) if t["program"].endswith("_hidden_tests")]
-        results = {} if problem else builder.run_tests(tests, work / f"logs-stage{stage}", options.test_timeout)
+        results = {} if problem else times.timed(f"stage {stage}: {len(tests)} tests", builder.run_tests, tests,
+                                                 work / f"logs-stage{stage}", options.test_timeout)
         if hidden_tests and not problem:
             hidden_log = work / f"stage{stage}-hidden.log"
             hidden_log.write_text("")
-            if builder.build_hidden(stage, hidden_log):
-                results.update(builder.run_tests(hidden_tests, work / f"logs-stage{stage}-hidden", options.test_timeout))
+            if times.timed(f"stage {stage}: build the hidden tests", builder.build_hidden, stage, hidden_log):
+                results.update(times.timed(f"stage {stage}: {len(hidden_tests)} hidden tests", builder.run_tests,
+                                           hidden_tests, work / f"logs-stage{stage}-hidden", options.test_timeout))
             else:
                 grade["hidden_build_problems"][stage] = files.tail_of(hidden_log, 3000)
         if not options.hidden:
@@ -97,7 +128,8 @@ def grade(tree, stages, out, work, options):
                            for r in outcomes.values()]
         grade["unclaimed"] += unclaimed
         for check in stage_spec.get("renders", []):
-            grade["renders"].append(renders.check_render(builder, ROOT, stage, check))
+            grade["renders"].append(times.timed(f"stage {stage}: render {check['name']}", renders.check_render,
+                                                builder, ROOT, stage, check))
         print(f"grade: stage {stage}: {sum(g.score for g in groups) + sum(r.score for r in grade['renders'] if r.stage == stage):.2f}"
               f" of {sum(g.points for g in groups) + sum(r.points for r in grade['renders'] if r.stage == stage):g}",
               flush=True)
@@ -106,7 +138,7 @@ def grade(tree, stages, out, work, options):
     board = spec.get("leaderboard")
     stage_renders = [r for r in grade["renders"] if board and r.stage == board["stage"]]
     if stage_renders and all(r.score == r.points for r in stage_renders):
-        grade["rays_per_second"], _ = renders.bvh_rays_per_second(builder, board)
+        grade["rays_per_second"], _ = times.timed("the BVH's speed", renders.bvh_rays_per_second, builder, board)
     total = sum(g.score for g in grade["groups"]) + sum(r.score for r in grade["renders"])
     possible = sum(g.points for g in grade["groups"]) + sum(r.points for r in grade["renders"])
     grade["seconds"] = deadline.elapsed()
@@ -122,7 +154,35 @@ def instructor_builder(build_dir, scratch, box):
     """A Builder over this tree's own build (the instructor's programs), for references and lists."""
     builder = build.Builder(box, scratch, 1, sandbox.Deadline(3600))
     builder.source, builder.build = ROOT, pathlib.Path(build_dir).resolve()
+    builder.seen = {builder.source: builder.source, builder.build: builder.build}
     return builder
+
+
+def prepare(folder, options, box):
+    """Builds the instructor's tree, every task as the starter's placeholder, with every stage's
+    tests and hidden tests, into `folder` (src, build): what --prepared grades against."""
+    spec = manifest.load(MANIFEST)
+    folder = pathlib.Path(folder).resolve()
+    folder.mkdir(parents=True, exist_ok=True)
+    folder.chmod(0o755)
+    box.check(folder)
+    files.remove_tree(folder / build.PREPARED_MARK)
+    start = time.monotonic()
+    builder = build.Builder(box, folder, options.jobs, sandbox.Deadline(3600))
+    build.prepare_tree(submission.starter(ROOT, spec), ROOT, builder.source, hidden=True)
+    log = folder / "prepare.log"
+    log.write_text("")
+    built = builder.configure(log)
+    for stage in sorted(spec["stages"]):
+        built = built and builder.build_stage(stage, log) and builder.build_hidden(stage, log)
+    if not built:
+        print(f"grade: the prepared build in {folder} failed; its log is {log}:\n{files.tail_of(log, 3000)}",
+              file=sys.stderr)
+        return 1
+    seconds = time.monotonic() - start
+    files.write_atomically(folder / build.PREPARED_MARK, json.dumps({"seconds": round(seconds, 1)}) + "\n")
+    print(f"grade: prepared {folder} in {seconds:.0f} s; grade with --prepared {folder}")
+    return 0
 
 
 def make_references(build_dir, box):
@@ -149,7 +209,11 @@ def main():
     parser.add_argument("tree", nargs="?", help="the submission to grade (a folder with the course's layout)")
     parser.add_argument("--stage", type=int, action="append", help="grade this stage (repeatable; default all)")
     parser.add_argument("--out", default="grade-report", help="folder for the reports (default grade-report)")
-    parser.add_argument("--work", help="folder for the graded tree and its build (default: a temporary one)")
+    parser.add_argument("--work", help="folder for the graded tree and its build (default: a temporary one; with "
+                        "--prepared and --container-is-sandbox, the prepared folder itself)")
+    parser.add_argument("--prepare", metavar="PREPARED", help="build the instructor's tree once into PREPARED")
+    parser.add_argument("--prepared", metavar="PREPARED",
+                        help="grade against the build --prepare made: only the submission's changed files compile")
     parser.add_argument("--jobs", type=int, default=2, help="parallel build and test jobs (default 2)")
     parser.add_argument("--no-hidden", dest="hidden", action="store_false",
                         help="leave the hidden tests out (a student's self-check)")
@@ -172,6 +236,8 @@ def main():
         if args.make_references:
             make_references(args.build, box)
             return 0
+        if args.prepare:
+            return prepare(args.prepare, args, box)
         if not args.tree:
             parser.error("give the tree to grade")
         tree = pathlib.Path(args.tree)
@@ -188,6 +254,18 @@ def main():
             return 1
         args.test_timeout = args.test_timeout or spec.get("test_timeout_seconds", 120)
         out = pathlib.Path(args.out).resolve()
+        if args.prepared:
+            args.prepared = pathlib.Path(args.prepared).resolve()
+            if not (args.prepared / build.PREPARED_MARK).is_file():
+                print(f"grade: --prepared {args.prepared}: not a finished prepared build (make it with --prepare)",
+                      file=sys.stderr)
+                return 1
+            if args.container_is_sandbox:  # no bind mounts: the build is graded where it was built
+                args.work = args.work or str(args.prepared)
+                if pathlib.Path(args.work).resolve() != args.prepared:
+                    print("grade: with --container-is-sandbox, --prepared is graded in place: leave out --work",
+                          file=sys.stderr)
+                    return 1
         if args.work:
             work = pathlib.Path(args.work).resolve()
             if out == work or work in out.parents:

@@ -1,6 +1,7 @@
 // stage1: renders a scene by ray casting with local shading (or one of its debug views).
 #include "01-ray-casting/ray_caster.h"
 #include "01-ray-casting/render.h"
+#include "common/cli.h"
 
 int main(int argc, char** argv) {
   using namespace rt;

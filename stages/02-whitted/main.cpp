@@ -1,6 +1,7 @@
 // stage2: renders a scene by Whitted-style recursive ray tracing (or one of its debug views).
 #include "01-ray-casting/render.h"
 #include "02-whitted/whitted.h"
+#include "common/cli.h"
 
 #include <map>
 

@@ -3,6 +3,7 @@
 #include "01-ray-casting/render.h"
 #include "02-whitted/whitted.h"
 #include "03-acceleration/bvh_aggregate.h"
+#include "common/cli.h"
 
 #include <atomic>
 #include <chrono>

@@ -2,6 +2,7 @@
 #include "01-ray-casting/render.h"
 #include "04-radiometry/direct_lighting.h"
 #include "04-radiometry/light_sampling_flags.h"
+#include "common/cli.h"
 
 #include <map>
 

@@ -2,6 +2,7 @@
 #include "01-ray-casting/render.h"
 #include "04-radiometry/light_sampling_flags.h"
 #include "05-path-tracing/path_render.h"
+#include "common/cli.h"
 #include "common/error.h"
 #include "common/heat_map.h"
 #include "common/image_io.h"

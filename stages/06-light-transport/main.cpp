@@ -2,6 +2,7 @@
 // progressive photon mapping.
 #include "01-ray-casting/render.h"
 #include "06-light-transport/transport_render.h"
+#include "common/cli.h"
 #include "common/error.h"
 #include "common/sample_batch.h"
 

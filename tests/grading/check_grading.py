@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """The coursework tooling's proofs (issue: starter tree and grading). CI runs it after the test
-suite; it takes about half an hour on 2 cores, most of it building trees.
+suite. Every grading shares one prepared build (tools/grade.py --prepare), as a class does; the
+starter's own build with the README's commands is the one other build.
 
     tests/grading/check_grading.py WORK     (a folder outside the repository)
 
@@ -69,9 +70,13 @@ def run(command, cwd=None):
     return subprocess.run(command, cwd=cwd).returncode
 
 
+PREPARED = None  # the prepared build every grading here uses (main sets it)
+
+
 def grade(tree, out, work, *flags):
-    """Grades `tree`; returns (results.json, outcomes.json) as dictionaries."""
-    if run([PYTHON, ROOT / "tools" / "grade.py", tree, "--out", out, "--work", work, *flags]) != 0:
+    """Grades `tree` against the prepared build; returns (results.json, outcomes.json) as dictionaries."""
+    if run([PYTHON, ROOT / "tools" / "grade.py", tree, "--out", out, "--work", work, "--prepared", PREPARED,
+            *flags]) != 0:
         raise SystemExit(f"check_grading: grading {tree} failed to run")
     out = pathlib.Path(out)
     return json.loads((out / "results.json").read_text()), json.loads((out / "outcomes.json").read_text())
@@ -235,9 +240,22 @@ def main():
     work.mkdir(parents=True, exist_ok=True)
     work.chmod(0o755)  # the sandbox's user enters the work folders below it
     problems = []
+    global PREPARED
+    PREPARED = work / "prepared"
+    start = time.monotonic()
+    if run([PYTHON, ROOT / "tools" / "grade.py", "--prepare", PREPARED]) != 0:
+        print("check_grading: the prepared build failed")
+        return 1
+    print(f"check_grading: prepared build: {time.monotonic() - start:.0f} s", flush=True)
+    start = time.monotonic()
     starter, starter_outcomes = check_starter(work, problems)
+    print(f"check_grading: the starter built and graded: {time.monotonic() - start:.0f} s", flush=True)
+    start = time.monotonic()
     check_full_and_bugs(work, problems)
+    print(f"check_grading: this tree and the planted bugs graded: {time.monotonic() - start:.0f} s", flush=True)
+    start = time.monotonic()
     check_hostile(work, starter, starter_outcomes, problems)
+    print(f"check_grading: the hostile submissions graded: {time.monotonic() - start:.0f} s", flush=True)
     for problem in problems:
         print(f"check_grading: {problem}")
     print(f"check_grading: {len(problems)} problems")

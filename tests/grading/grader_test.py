@@ -291,6 +291,42 @@ class TheSandbox(unittest.TestCase):
             self.assertIn("No such file", said)
             self.assertFalse(pathlib.Path("/usr/x").exists())
 
+    def test_a_step_sees_a_copy_where_the_prepared_build_was(self):
+        box = sandbox_or_skip(self)
+        with Folder() as d:
+            copy, prepared = d / "copy", d / "prepared"  # the prepared folder is not even on the host
+            copy.mkdir()
+            (copy / "file").write_text("the copy\n")
+            scratch = d / "scratch"
+            scratch.mkdir()
+            if box.uid is not None:
+                os.chown(scratch, box.uid, box.uid)
+            log = d / "log"
+            log.write_text("")
+            result = box.run(["/bin/sh", "-c", f"cat {prepared}/file; ls {copy} || echo no-$((1 + 1))"], log, 20,
+                             read_only=[(copy, prepared)], writable=[scratch], cwd=scratch)
+            said = log.read_text()
+            self.assertIn("\nthe copy\n", said)
+            self.assertIn("no-2", said, "the copy is seen only where the prepared build was")
+            self.assertEqual(result.code, 0)
+
+    def test_without_bubblewrap_nothing_is_seen_elsewhere_than_where_it_is(self):
+        box = sandbox.Sandbox(container_is_sandbox=True)
+        with Folder() as d:
+            log = d / "log"
+            log.write_text("")
+            with self.assertRaises(sandbox.SandboxError):
+                box.run(["/bin/true"], log, 5, read_only=[(d, d / "elsewhere")])
+
+    def test_a_builder_maps_its_copy_to_the_prepared_paths_and_nothing_else(self):
+        with Folder() as d:
+            builder = build.Builder(sandbox.Sandbox(container_is_sandbox=True, user=os.geteuid()), d / "work", 1,
+                                    sandbox.Deadline(10), seen_at=d / "prepared")
+            self.assertEqual(builder.seen_path(d / "work" / "build" / "bin" / "stage1"), d / "prepared" / "build" / "bin" / "stage1")
+            self.assertEqual(builder.seen_path(d / "work" / "src"), d / "prepared" / "src")
+            self.assertEqual(builder.seen_path(d / "work" / "scratch" / "test0"), d / "work" / "scratch" / "test0")
+            self.assertEqual(builder.seen_path(d / "work" / "srcx"), d / "work" / "srcx")
+
     def test_nothing_a_step_starts_outlives_it(self):
         box = sandbox_or_skip(self)
         with Folder() as d:

@@ -3,7 +3,7 @@
 // NaN image, a hang or a silent clamp (label "reliability").
 #include "03-acceleration/bvh.h"
 #include "04-radiometry/lighting_scene.h"
-#include "common/cli.h"
+#include "common/options.h"
 #include "common/error.h"
 #include "common/memory_limit.h"
 #include "common/obj_loader.h"

@@ -222,9 +222,10 @@ TEST(NonFiniteValues, ARenderWritesThemBlackAndSaysSo) {
 TEST(NonFiniteValues, MergeRefusesSumsThatOverflowFloat) {
   ScratchDir dir;
   std::vector<SampleBatch> batches;
+  const char* const names[] = {"b0.json", "b1.json"};  // not "b" + to_string(k): GCC 12's false -Wstringop-overflow
   for (int k = 0; k < 2; ++k) {
     SampleBatch b;
-    b.file = dir / ("b" + std::to_string(k) + ".json");
+    b.file = dir / names[k];
     b.identity = {"stage5", "scene.json", "0123", "", 2, 1, 7};
     b.window = {0, 0, 2, 1};
     b.pieces = {{{0, 0, 2, 1}, {k, k + 1}}};

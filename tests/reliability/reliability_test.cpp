@@ -2,7 +2,7 @@
 // killed run, and every input the fuzzers were seeded with or found, each refused in one line or
 // loaded, never crashing.
 #include "01-ray-casting/render.h"
-#include "common/cli.h"
+#include "common/options.h"
 #include "common/error.h"
 #include "common/image_io.h"
 #include "common/interrupt.h"

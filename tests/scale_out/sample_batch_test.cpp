@@ -1,6 +1,6 @@
 // Sample batch files (common/sample_batch.h) and the flags that ask for one: a batch reads back
 // bit for bit, and a damaged, replaced or inconsistent one is refused naming its file.
-#include "common/cli.h"
+#include "common/options.h"
 #include "common/error.h"
 #include "common/image_io.h"
 #include "common/sample_batch.h"

@@ -12,6 +12,13 @@ folder can be kept from one grading to the next. While a student's code is compi
 tests' sources read as empty files, so a compile error cannot print them into the visible report;
 they are compiled in a step of their own, whose log only the instructor sees.
 
+A prepared build (`tools/grade.py --prepare DIR`) is the instructor's tree with every editable
+file as the starter's, configured and built once for every stage and its hidden tests. Grading a
+submission with it copies DIR/src and DIR/build (modification times kept) into the submission's
+work folder, puts the submission's files in, and lets ninja compile only the files that differ
+from the starter's and relink: a stage a student did not touch costs nothing. Every step sees the
+copy at DIR's own paths (the build files name them), through the sandbox's bind mounts.
+
 Tests run one by one, each in a sandbox of its own that sees the assets, its test program and the
 stage programs only. A test passes only when its process ends with 0 AND GoogleTest's XML report,
 which it writes after the last test of a normal run, says that the test ran and passed: a test
@@ -23,6 +30,7 @@ import json
 import os
 import pathlib
 import re
+import subprocess
 import xml.etree.ElementTree as ElementTree
 
 from . import files
@@ -72,17 +80,46 @@ def hidden_sources(source):
     return sorted(p for p in (pathlib.Path(source) / "tests" / "hidden").glob("*") if p.suffix in {".cpp", ".h"})
 
 
-class Builder:
-    """The build of one tree in `work` (src, build, scratch) through a sandbox."""
+PREPARED_MARK = "prepared.json"
 
-    def __init__(self, sandbox, work, jobs, deadline):
+
+def copy_prepared(prepared, work):
+    """Copies a prepared build's src and build into `work`, modification times and owners kept,
+    unless `work` already holds a build (an earlier grading's, which ninja brings up to date)."""
+    prepared, work = pathlib.Path(prepared), pathlib.Path(work)
+    if (work / "build" / "build.ninja").exists():
+        return
+    for part in ("src", "build"):
+        files.remove_tree(work / part)
+        subprocess.run(["cp", "-a", "--reflink=auto", str(prepared / part), str(work / part)], check=True)
+
+
+class Builder:
+    """The build of one tree in `work` (src, build, scratch) through a sandbox. The steps see src
+    and build under `seen_at` (default: `work` itself): a prepared build's folder, for a copy."""
+
+    def __init__(self, sandbox, work, jobs, deadline, seen_at=None):
         self.sandbox, self.jobs, self.deadline = sandbox, jobs, deadline
         self.work = pathlib.Path(work)
         self.source, self.build = self.work / "src", self.work / "build"
+        seen_at = pathlib.Path(seen_at or work)
+        self.seen = {self.source: seen_at / "src", self.build: seen_at / "build"}
         self.scratch = self.work / "scratch"
         for folder in (self.build, self.scratch):
             folder.mkdir(parents=True, exist_ok=True)
             self.own(folder)
+
+    def seen_path(self, path):
+        """Where a step sees `path` (a host path, under src or build or elsewhere)."""
+        path = pathlib.Path(path)
+        for host, seen in self.seen.items():
+            if path == host or host in path.parents:
+                return seen / path.relative_to(host)
+        return path
+
+    def bound(self, path):
+        """`path` as a sandbox entry: (host path, path the step sees)."""
+        return pathlib.Path(path), self.seen_path(path)
 
     def _step(self, command, log, limit, masked=()):
         timeout = self.deadline.timeout(limit)
@@ -91,8 +128,9 @@ class Builder:
                 out.write(f"not run: the time cap of {self.deadline.cap:g} s was reached\n")
             return False
         # The build folder is the step's one writable folder (its HOME and TMPDIR too).
-        result = self.sandbox.run(command, log, timeout, read_only=[self.source], writable=[self.build],
-                                  masked=masked, cwd=self.build)
+        result = self.sandbox.run(command, log, timeout, read_only=[self.bound(self.source)],
+                                  writable=[self.bound(self.build)], masked=[self.seen_path(p) for p in masked],
+                                  cwd=self.seen_path(self.build))
         return result.code == 0
 
     def own(self, path):
@@ -106,21 +144,22 @@ class Builder:
         library's bounds checks are on (_GLIBCXX_ASSERTIONS): an index past the end of a std::array
         or std::vector stops the test that made it, where a plain release build would go on with
         whatever it overwrote."""
-        return self._step(["cmake", "-S", str(self.source), "-B", str(self.build), "-G", "Ninja",
-                           "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_CXX_FLAGS=-D_GLIBCXX_ASSERTIONS",
-                           "-DRT_BUILD_BENCHMARKS=OFF", "-DRT_WARNINGS_AS_ERRORS=OFF",
+        return self._step(["cmake", "-S", str(self.seen_path(self.source)), "-B", str(self.seen_path(self.build)),
+                           "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_CXX_FLAGS=-D_GLIBCXX_ASSERTIONS",
+                           "-DRT_BUILD_BENCHMARKS=OFF", "-DRT_WARNINGS_AS_ERRORS=OFF", "-DRT_USE_CCACHE=OFF",
                            "-DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST"], log, 300)
 
     def build_stage(self, stage, log):
         """The stage's program and tests (every stage program: the tests of a stage run them)."""
         targets = [f"stage{stage}", f"stage{stage}_tests"]
-        return self._step(["cmake", "--build", str(self.build), "-j", str(self.jobs), "--target", *targets], log, 1800,
+        return self._step(["cmake", "--build", str(self.seen_path(self.build)), "-j", str(self.jobs), "--target",
+                           *targets], log, 1800,
                           masked=hidden_sources(self.source))
 
     def build_hidden(self, stage, log):
         if not hidden_sources(self.source):
             return True
-        return self._step(["cmake", "--build", str(self.build), "-j", str(self.jobs), "--target",
+        return self._step(["cmake", "--build", str(self.seen_path(self.build)), "-j", str(self.jobs), "--target",
                            f"stage{stage}_hidden_tests"], log, 1800)
 
     def programs(self):
@@ -167,9 +206,10 @@ def run_one_test(builder, test, slot, log, timeout):
     slot.mkdir()
     builder.own(slot)
     report = slot / "report.xml"
-    read_only = [builder.source / "assets", program, *builder.programs()]
-    result = builder.sandbox.run([str(program), f"--gtest_filter={name}", f"--gtest_output=xml:{report}"], log, step,
-                                 read_only=list(dict.fromkeys(read_only)), writable=[slot], cwd=slot)
+    read_only = [builder.bound(p) for p in dict.fromkeys([builder.source / "assets", program, *builder.programs()])]
+    result = builder.sandbox.run([str(builder.seen_path(program)), f"--gtest_filter={name}",
+                                  f"--gtest_output=xml:{report}"], log, step, read_only=read_only, writable=[slot],
+                                 cwd=slot)
     verdict = judge(name, result, slot)
     files.remove_tree(slot)
     return TestResult(name, verdict is None, result.seconds, test_output(files.head_and_tail_of(log, 20000), verdict))
@@ -223,7 +263,6 @@ def judge(name, result, slot):
 def list_tests(build):
     """The tests of every stage label in an instructor's build: {stage: [{"name", "program"}]}, from
     ctest's listing (which runs the test programs to discover their tests: the instructor's own)."""
-    import subprocess
     listing = json.loads(subprocess.run(["ctest", "--test-dir", str(build), "--show-only=json-v1"], check=True,
                                         capture_output=True, text=True).stdout)
     stages = {}

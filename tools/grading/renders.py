@@ -30,6 +30,7 @@ class RenderResult:
     failed_pixels: object = None
     rmse: float = float("nan")
     statistical: bool = False
+    checked: bool = True       # False: no reference here (a student's self-grade), worth no points
 
 
 def render(builder, check, seed, timeout=300):
@@ -50,9 +51,10 @@ def render(builder, check, seed, timeout=300):
     log = builder.work / "render.log"
     log.write_text("")
     out = slot / "render.pfm"
-    command = [str(program), "--scene", str(scene), "--out", str(out), "--seed", str(seed), *check.get("args", [])]
-    result = builder.sandbox.run(command, log, step, read_only=[builder.source / "assets", program], writable=[slot],
-                                 cwd=slot)
+    command = [str(builder.seen_path(program)), "--scene", str(builder.seen_path(scene)), "--out", str(out),
+               "--seed", str(seed), *check.get("args", [])]
+    result = builder.sandbox.run(command, log, step, read_only=[builder.bound(builder.source / "assets"),
+                                                                 builder.bound(program)], writable=[slot], cwd=slot)
     said = files.tail_of(log, 4000).strip()
     try:
         if result.timed_out:
@@ -85,6 +87,8 @@ def check_render(builder, instructor_root, stage, check):
     result = RenderResult(check["name"], stage, check["points"], 0.0, [], statistical=check["check"] == "statistical")
     prefix = pathlib.Path(instructor_root) / check["reference"]
     if not pathlib.Path(f"{prefix}-mean.pfm").exists():
+        # A self-grade: the check is left out of the total, neither passed nor failed.
+        result.points, result.checked = 0.0, False
         result.problems.append(f"not checked: the reference {check['reference']}-mean.pfm is the instructor's "
                                "(the starter tree has none)")
         return result

@@ -79,14 +79,29 @@ def markdown(grade):
             for name, text in g.failures:
                 lines += [f"  - `{name}`:", "    ```", *("    " + l for l in clip(text).splitlines()), "    ```"]
         for r in (r for r in grade["renders"] if r.stage == stage):
+            if not r.checked:
+                lines.append(f"- not checked: render {r.name} (its reference is the instructor's)")
+                continue
             lines.append(f"- {'ok' if not r.problems else 'FAILED'} render {r.name}: {r.score:g} / {r.points:g}, "
                          f"RMSE {r.rmse:.4g}" + "".join(f"\n  - {p}" for p in r.problems))
     if grade.get("rays_per_second"):
         lines += ["", f"Leaderboard: BVH {grade['rays_per_second'] / 1e6:.2f} M rays/s (bunny, 1 thread)."]
     if grade["unclaimed"]:
         lines += ["", "Tests not in the manifest (worth nothing): " + ", ".join(f"`{n}`" for n in grade["unclaimed"])]
+    lines += time_section(grade)
     lines += instructor_section(grade)
     return "\n".join(lines) + "\n"
+
+
+def time_section(grade):
+    """Each step's seconds: where a grading's time went."""
+    if not grade.get("steps"):
+        return []
+    built = "against the prepared build (only the changed files compiled)" if grade.get("prepared") else \
+        "building the whole tree"
+    lines = ["", "## Time", "", f"Graded {built}.", "", "| step | seconds |", "|---|---:|"]
+    lines += [f"| {name} | {seconds:.1f} |" for name, seconds in grade["steps"]]
+    return lines + [f"| total | {grade['seconds']:.1f} |"]
 
 
 def instructor_section(grade):
@@ -152,6 +167,9 @@ def html_report(grade):
             for name, text in g.failures:
                 parts.append(f"<details><summary class='bad'>{html.escape(name)}</summary><pre>{html.escape(clip(text))}</pre></details>")
         for r in (r for r in grade["renders"] if r.stage == stage):
+            if not r.checked:
+                parts.append(f"<h3>Render: {html.escape(r.name)}: not checked (its reference is the instructor's)</h3>")
+                continue
             css = "ok" if not r.problems else "bad"
             parts.append(f"<h3 class='{css}'>Render: {html.escape(r.name)}: {r.score:g} / {r.points:g}, RMSE {r.rmse:.4g}</h3>")
             parts += [f"<p class='bad'>{html.escape(p)}</p>" for p in r.problems]
@@ -173,7 +191,7 @@ def outcomes(grade):
             "renders": [{"stage": r.stage, "name": r.name, "points": r.points, "score": r.score,
                          "rmse": r.rmse if r.rmse == r.rmse else None,
                          "problems": r.problems} for r in grade["renders"]],
-            "rays_per_second": grade.get("rays_per_second"), "seconds": grade["seconds"],
+            "rays_per_second": grade.get("rays_per_second"), "seconds": grade["seconds"], "steps": grade.get("steps", []),
             "time_cap": grade["time_cap"], "cap_reached": grade.get("cap_reached", False), "notes": grade.get("notes", []),
             "flags": [{"file": f.file, "line": f.line, "why": f.why, "text": f.text} for f in grade.get("flags", [])]}
 

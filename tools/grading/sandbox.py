@@ -111,10 +111,10 @@ class Sandbox:
             if os.path.exists(path):
                 arguments += ["--ro-bind", path, path]
         arguments += ["--proc", "/proc", "--dev", "/dev", "--size", str(64 << 20), "--tmpfs", "/tmp"]
-        for path in read_only:
-            arguments += ["--ro-bind", str(path), str(path)]
-        for path in writable:
-            arguments += ["--bind", str(path), str(path)]
+        for host, seen in map(host_and_seen, read_only):
+            arguments += ["--ro-bind", host, seen]
+        for host, seen in map(host_and_seen, writable):
+            arguments += ["--bind", host, seen]
         for path in masked:  # an empty file in place of each (hidden test sources while students' code builds)
             arguments += ["--ro-bind", "/dev/null", str(path)]
         arguments += ["--clearenv"]
@@ -136,13 +136,19 @@ class Sandbox:
     def run(self, command, log, timeout, read_only=(), writable=(), masked=(), cwd=None, environment=None):
         """Runs `command` in the sandbox with its output appended to `log` (a file of the grader's,
         which the step writes only through its standard output, so the file size limit bounds it).
+        `read_only` and `writable` hold paths, or (path, path the step sees) pairs: a prepared build
+        (build.py) is always seen where it was built, wherever its copy lies.
         Returns a Result; a step that outlives `timeout` seconds is killed with everything it
         started."""
-        cwd = cwd or (writable[0] if writable else "/")
-        home = str(writable[0]) if writable else "/tmp"
+        cwd = cwd or (host_and_seen(writable[0])[1] if writable else "/")
+        home = host_and_seen(writable[0])[1] if writable else "/tmp"
         environment = {"PATH": "/usr/bin:/bin", "HOME": home, "TMPDIR": home, "LANG": "C.UTF-8",
                        "GTEST_COLOR": "no", **(environment or {})}
         if self.container_is_sandbox:
+            moved = [f"{host} at {seen}" for host, seen in map(host_and_seen, [*read_only, *writable]) if host != seen]
+            if moved:  # without bubblewrap a folder cannot be shown at another path
+                raise SandboxError(f"without bubblewrap a step cannot see {moved[0]}: grade in the prepared folder "
+                                   "itself (docs/instructors.md)")
             full = [*self._limit_arguments(timeout), *command]
             env = environment
         else:
@@ -155,7 +161,8 @@ class Sandbox:
             out.flush()
             user = {} if self.uid is None else {"user": self.uid, "group": self.uid, "extra_groups": []}
             process = subprocess.Popen(full, stdin=subprocess.DEVNULL, stdout=out, stderr=subprocess.STDOUT,
-                                       cwd=str(cwd), env=env, start_new_session=True, **user)
+                                       cwd=str(cwd) if self.container_is_sandbox else "/", env=env,
+                                       start_new_session=True, **user)
             timed_out = False
             try:
                 code = process.wait(timeout=max(timeout, 0.1))
@@ -167,6 +174,13 @@ class Sandbox:
             if self.container_is_sandbox:
                 kill_group(process)  # without a PID namespace, whatever the step left in its group
         return Result(code, time.monotonic() - start, timed_out)
+
+
+def host_and_seen(entry):
+    """A folder or file given to a step: a path, seen by the step where it is, or a pair (the path
+    on the grader's machine, the path the step sees it at)."""
+    host, seen = entry if isinstance(entry, tuple) else (entry, entry)
+    return str(host), str(seen)
 
 
 def kill_group(process):

@@ -112,3 +112,8 @@ def take(tree, root, spec):
             taken.flags += flags_in(relative, data.decode(), starter.decode())
         taken.files[relative] = data
     return taken
+
+
+def starter(root, spec):
+    """Every editable file as the starter's version: what a prepared build is built from."""
+    return Taken({relative: starter_version(root, relative) for relative in editable_files(root, spec)}, [], [])

@@ -1,0 +1,1 @@
+// The translation unit that cmake/BuildSpeed.cmake compiles the shared precompiled headers with.

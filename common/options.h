@@ -1,0 +1,57 @@
+// What every stage program is asked on its command line (docs/design.md), as plain values: the
+// options the program shell renders with. Parsing them is common/cli.h's job, the one place that
+// sees CLI11, so that the libraries and tests that only read options never compile it (CLI11
+// costs seconds of compile time in every file that includes it: docs/build.md).
+#pragma once
+
+#include "common/image_io.h"
+#include "common/memory_limit.h"
+#include "common/scene.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rt {
+
+// The first sample and the number of samples a --sample-range asks for.
+struct SampleRangeFlag {
+  int first = 0, count = 0;
+};
+
+struct CommonOptions {
+  std::string scene;
+  std::string out;  // .png or .pfm: the image; .json: a sample batch (common/sample_batch.h)
+  std::optional<int> spp, width, height;
+  std::optional<std::uint64_t> seed;
+  std::optional<int> max_depth;  // registered by the stages that recurse (add_max_depth_flag)
+  int threads = 0;  // 0 = all cores
+  // Scale-out (docs/scale-out.md): "a:b" renders samples [a, b) of each pixel; "x0:x1,y0:y1" only
+  // the pixels [x0, x1) x [y0, y1).
+  std::optional<std::string> sample_range, crop;
+  std::optional<std::string> filter;  // --filter: a pixel filter's name (kPixelFilterNames)
+  ImageEncoding encoding;  // --exposure --tone --white --gamma --exr-half: how an image file encodes
+  // The stage's own flags that shape the image, "--name=value ..." with defaults filled in, set by
+  // run_stage_program: what a sample batch records so that only batches of one render merge.
+  std::string image_flags;
+
+  // The scene's render block with the command-line values put over it.
+  // Throws UsageError for a sample range or crop window that is malformed or outside the image, or
+  // for an output that is one of the scene's own files (the scene, a mesh); and InputError, with
+  // the figures, for an image or a scene this process could not hold (common/memory_limit.h).
+  RenderSettings settings_for(const SceneDescription& scene) const;
+};
+
+// "a:b" with 0 <= a < b <= kMaxSpp; "x0:x1,y0:y1" inside a width x height image with x0 < x1 and
+// y0 < y1. Throw UsageError naming the flag and the problem.
+SampleRangeFlag parse_sample_range(const std::string& text);
+PixelRect parse_crop(const std::string& text, int width, int height);
+
+// The files an output writes: OUT itself, or for a sample batch NAME.json, NAME.sum.pfm and
+// NAME.count.pfm (common/sample_batch.h).
+std::vector<std::string> output_files(const std::string& out);
+// Throws UsageError when an output file is one of `inputs`: writing it would destroy the input.
+void require_outputs_spare_inputs(const std::string& out, const std::vector<std::string>& inputs);
+
+}  // namespace rt
