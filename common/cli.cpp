@@ -1,5 +1,7 @@
 #include "common/cli.h"
 
+#include "common/stage_program.h"
+
 #include "common/error.h"
 #include "common/file_io.h"
 #include "common/image_io.h"
@@ -216,14 +218,62 @@ void add_image_encoding_flags(CLI::App& app, ImageEncoding& encoding) {
   app.add_flag("--exr-half", encoding.exr_half, "EXR only: 16-bit half floats instead of 32-bit floats");
 }
 
-void add_max_depth_flag(CLI::App& app, CommonOptions& options) {
-  app.add_option("--max-depth", options.max_depth,
-                 "Recursion depth limit: bounces followed before a path stops (default: the scene's)")
+namespace {
+
+CLI::Validator rule_check(FlagRule rule) {
+  switch (rule.kind) {
+    case FlagRule::Kind::decimal: return decimal(std::uint64_t(rule.lo), std::uint64_t(rule.hi));
+    case FlagRule::Kind::finite: return finite_range(rule.lo, rule.hi);
+    case FlagRule::Kind::any: break;
+  }
+  return CLI::Validator();
+}
+
+template <class T>
+void add_checked(CLI::App& app, const std::string& name, T& value, const std::string& help, FlagRule rule) {
+  CLI::Option* option = app.add_option(name, value, help);
+  if (rule.kind != FlagRule::Kind::any) option->transform(rule_check(rule));
+}
+
+}  // namespace
+
+void StageFlags::add(const std::string& name, int& value, const std::string& help, FlagRule rule) {
+  add_checked(app_, name, value, help, rule);
+}
+void StageFlags::add(const std::string& name, float& value, const std::string& help, FlagRule rule) {
+  add_checked(app_, name, value, help, rule);
+}
+void StageFlags::add(const std::string& name, std::optional<float>& value, const std::string& help, FlagRule rule) {
+  add_checked(app_, name, value, help, rule);
+}
+void StageFlags::add(const std::string& name, std::string& value, const std::string& help) {
+  app_.add_option(name, value, help);
+}
+
+void StageFlags::add_word(const std::string& name, std::string& value, const std::vector<std::string>& words,
+                          const std::string& help) {
+  app_.add_option(name, value, help)->check(CLI::IsMember(words));
+}
+
+void StageFlags::add_choice_number(const std::string& name, int& number,
+                                   const std::vector<std::pair<std::string, int>>& words, const std::string& help) {
+  app_.add_option(name, number, help)
+      ->transform(CLI::CheckedTransformer(std::map<std::string, int>(words.begin(), words.end())));
+}
+
+void StageFlags::add_switch(const std::string& name, bool& value, const std::string& help, const std::string& needs) {
+  CLI::Option* option = app_.add_flag(name, value, help);
+  if (!needs.empty()) option->needs(app_.get_option(needs));
+}
+
+void StageFlags::add_max_depth(CommonOptions& options) {
+  app_.add_option("--max-depth", options.max_depth,
+                  "Recursion depth limit: bounces followed before a path stops (default: the scene's)")
       ->transform(decimal(0, 1000));
 }
 
 int run_stage_program(int argc, char** argv, const std::string& program, const std::string& title,
-                      CommonOptions& options, const std::function<void(CLI::App&)>& add_stage_flags,
+                      CommonOptions& options, const std::function<void(StageFlags&)>& add_stage_flags,
                       const std::function<void()>& run) {
   CLI::App app(title, program);
   app.add_option("--scene", options.scene, "Scene file (JSON, see docs/scene-format.md)")
@@ -262,10 +312,12 @@ int run_stage_program(int argc, char** argv, const std::string& program, const s
   const std::set<std::string> common_flags = {
       "--help", "--scene", "--out", "--spp", "--width", "--height", "--threads", "--seed", "--sample-range",
       "--crop", "--max-depth", "--filter", "--exposure", "--tone", "--white", "--gamma", "--exr-half"};
-  add_stage_flags(app);
+  StageFlags flags(app);
+  add_stage_flags(flags);
   const std::vector<std::pair<CLI::Option*, std::string>> stage_flags = stage_flag_defaults(app, common_flags);
 
   if (const std::optional<int> exit_code = parse_command_line(app, argc, argv, program)) return *exit_code;
+  flags.write_back();
   options.image_flags = describe_flags(stage_flags);
 
   InterruptHandler interrupt_handler;

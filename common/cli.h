@@ -1,7 +1,8 @@
-// The command line every stage executable shares (docs/design.md): --scene --spp --out --width --height
-// --threads --seed, plus the stage's own flags. Exit codes: 0 ok, 1 bad input, 2 bad usage; every
-// failure is one line on stderr. The options themselves are plain values (common/options.h); only
-// the files that parse a command line include this header, and with it CLI11.
+// Command lines through CLI11 (docs/design.md): the checks of number flags, the image encoding flags,
+// parsing and the exit codes (0 ok, 1 bad input, 2 bad usage; every failure is one line on stderr).
+// Only the files that parse a command line include this header, and with it CLI11: the stage
+// programs go through common/stage_program.h, the options themselves are plain values
+// (common/options.h).
 #pragma once
 
 #include "common/options.h"
@@ -28,18 +29,8 @@ CLI::Validator finite_range(double lo, double hi);
 // --tone, --white and --gamma for a PNG, --exr-half for an EXR. Every stage program and merge.
 void add_image_encoding_flags(CLI::App& app, ImageEncoding& encoding);
 
-// --max-depth, for the stage programs that follow rays recursively (stage 2 on).
-void add_max_depth_flag(CLI::App& app, CommonOptions& options);
-
-// Parses the command line into `options` (plus whatever `add_stage_flags` registered), then calls
-// `run`. Maps --help to exit 0, usage errors to 2 and InputError to 1, each with one line on stderr
-// that starts with the program name. The output path is checked before `run` is called, so no
-// render is wasted on an unwritable path.
-int run_stage_program(int argc, char** argv, const std::string& program, const std::string& title,
-                      CommonOptions& options, const std::function<void(CLI::App&)>& add_stage_flags,
-                      const std::function<void()>& run);
-
-// The two halves of that, for any program of the project (the merge program too).
+// The two halves of a program's shell, for any program of the project (the stage programs' run_stage_program,
+// common/stage_program.h, and merge).
 // Parses `app`: returns nothing when the run should go on, or the exit code after --help (0, help
 // printed) or a usage error (2, one line "PROGRAM: error: ... (see --help)").
 std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv, const std::string& program);

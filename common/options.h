@@ -1,7 +1,7 @@
 // What every stage program is asked on its command line (docs/design.md), as plain values: the
-// options the program shell renders with. Parsing them is common/cli.h's job, the one place that
-// sees CLI11, so that the libraries and tests that only read options never compile it (CLI11
-// costs seconds of compile time in every file that includes it: docs/build.md).
+// options the program shell renders with. Parsing them is common/cli.cpp's job, the one file of
+// the stages' shell that sees CLI11, so that the libraries, programs and tests that only read
+// options never compile it (CLI11 costs seconds in every file that includes it: docs/build.md).
 #pragma once
 
 #include "common/image_io.h"
@@ -25,7 +25,7 @@ struct CommonOptions {
   std::string out;  // .png or .pfm: the image; .json: a sample batch (common/sample_batch.h)
   std::optional<int> spp, width, height;
   std::optional<std::uint64_t> seed;
-  std::optional<int> max_depth;  // registered by the stages that recurse (add_max_depth_flag)
+  std::optional<int> max_depth;  // registered by the stages that recurse (StageFlags::add_max_depth)
   int threads = 0;  // 0 = all cores
   // Scale-out (docs/scale-out.md): "a:b" renders samples [a, b) of each pixel; "x0:x1,y0:y1" only
   // the pixels [x0, x1) x [y0, y1).

@@ -54,7 +54,7 @@ def todo_comment(region, task):
     return [
         f"// TODO({region.task_id}): {what}.",
         f"//   Formula and source: the comment on this function in its header; docs/stage{stage}.md, Tasks.",
-        f"//   Checked by: {tests} (ctest --preset release -L stage{stage}).",
+        f"//   Checked by: {tests} (cmake --build --preset stage{stage} && ctest --preset stage{stage}).",
         "//   Write your code in place of the placeholder lines below, down to PLACEHOLDER.",
     ]
 

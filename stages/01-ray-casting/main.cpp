@@ -1,7 +1,7 @@
 // stage1: renders a scene by ray casting with local shading (or one of its debug views).
 #include "01-ray-casting/ray_caster.h"
 #include "01-ray-casting/render.h"
-#include "common/cli.h"
+#include "common/stage_program.h"
 
 int main(int argc, char** argv) {
   using namespace rt;
@@ -10,11 +10,10 @@ int main(int argc, char** argv) {
 
   return run_stage_program(
       argc, argv, "stage1", "Stage 1: ray casting with local shading under point lights", options,
-      [&](CLI::App& app) {
-        app.add_option("--debug", debug_name,
+      [&](StageFlags& flags) {
+        flags.add_word("--debug", debug_name, {"none", "normal", "depth", "albedo"},
                        "Debug view instead of shading: none, normal, depth (scaled to [0, 1] in "
-                       "PNG, raw distance in PFM), albedo")
-            ->check(CLI::IsMember({"none", "normal", "depth", "albedo"}));
+                       "PNG, raw distance in PFM), albedo");
       },
       [&] {
         const DebugView view = debug_view_from_name(debug_name);

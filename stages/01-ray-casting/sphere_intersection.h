@@ -30,7 +30,8 @@ std::optional<float> intersect_sphere_textbook(const Ray& ray, const Sphere& sph
 // c itself is formed as (|f| - r)(|f| + r), which stays accurate when the origin is near the surface.
 std::optional<float> intersect_sphere_stable(const Ray& ray, const Sphere& sphere, Interval range);
 
-// Both roots of the stable form, sorted (t0 <= t1), or nothing when the line misses the sphere.
+// Both roots of the stable form, sorted (t0 <= t1), or nothing when the line misses the sphere:
+// the formula is intersect_sphere_stable's, above, which takes the nearest root in range from here.
 // Used where a whole [enter, exit] span is needed (bounding spheres of implicit surfaces).
 std::optional<Interval> sphere_span(const Ray& ray, const Sphere& sphere);
 

@@ -1,9 +1,8 @@
 // stage2: renders a scene by Whitted-style recursive ray tracing (or one of its debug views).
 #include "01-ray-casting/render.h"
 #include "02-whitted/whitted.h"
-#include "common/cli.h"
+#include "common/stage_program.h"
 
-#include <map>
 
 int main(int argc, char** argv) {
   using namespace rt;
@@ -14,31 +13,25 @@ int main(int argc, char** argv) {
 
   return run_stage_program(
       argc, argv, "stage2", "Stage 2: Whitted-style ray tracing: mirrors, glass, shadows, meshes", options,
-      [&](CLI::App& app) {
-        add_max_depth_flag(app, options);
-        app.add_option("--debug", debug_name,
-                       "Debug view instead of shading: none, normal (shading normal), depth, albedo")
-            ->check(CLI::IsMember({"none", "normal", "depth", "albedo"}));
-        app.add_option("--fresnel", whitted.fresnel, "Fresnel reflectance of glass: exact or schlick")
-            ->transform(CLI::CheckedTransformer(
-                std::map<std::string, FresnelModel>{{"exact", FresnelModel::exact},
-                                                    {"schlick", FresnelModel::schlick}}));
-        app.add_option("--offset", whitted.offset.method,
-                       "Where secondary rays start: error-bound (default), integer-ulp, or fixed "
-                       "(--epsilon along the normal)")
-            ->transform(CLI::CheckedTransformer(std::map<std::string, OffsetMethod>{
-                {"error-bound", OffsetMethod::error_bound},
-                {"integer-ulp", OffsetMethod::integer_ulp},
-                {"fixed", OffsetMethod::fixed}}));
-        app.add_option("--epsilon", whitted.offset.epsilon, "Offset distance for --offset fixed")
-            ->check(finite_range(0.0, 3.0e38));
-        app.add_option("--triangle", triangle_method,
-                       "Ray-triangle test: watertight (default), watertight-lanes (the same answers, the "
-                       "corners in SIMD lanes) or moller-trumbore")
-            ->transform(CLI::CheckedTransformer(std::map<std::string, TriangleMethod>{
-                {"watertight", TriangleMethod::watertight},
-                {"watertight-lanes", TriangleMethod::watertight_lanes},
-                {"moller-trumbore", TriangleMethod::moller_trumbore}}));
+      [&](StageFlags& flags) {
+        flags.add_max_depth(options);
+        flags.add_word("--debug", debug_name, {"none", "normal", "depth", "albedo"},
+                       "Debug view instead of shading: none, normal (shading normal), depth, albedo");
+        flags.add_choice("--fresnel", whitted.fresnel, {{"exact", FresnelModel::exact}, {"schlick", FresnelModel::schlick}},
+                         "Fresnel reflectance of glass: exact or schlick");
+        flags.add_choice("--offset", whitted.offset.method,
+                         {{"error-bound", OffsetMethod::error_bound},
+                          {"integer-ulp", OffsetMethod::integer_ulp},
+                          {"fixed", OffsetMethod::fixed}},
+                         "Where secondary rays start: error-bound (default), integer-ulp, or fixed "
+                         "(--epsilon along the normal)");
+        flags.add("--epsilon", whitted.offset.epsilon, "Offset distance for --offset fixed", finite_in(0.0, 3.0e38));
+        flags.add_choice("--triangle", triangle_method,
+                         {{"watertight", TriangleMethod::watertight},
+                          {"watertight-lanes", TriangleMethod::watertight_lanes},
+                          {"moller-trumbore", TriangleMethod::moller_trumbore}},
+                         "Ray-triangle test: watertight (default), watertight-lanes (the same answers, the "
+                         "corners in SIMD lanes) or moller-trumbore");
       },
       [&] {
         const DebugView view = debug_view_from_name(debug_name);

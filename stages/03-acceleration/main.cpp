@@ -3,7 +3,7 @@
 #include "01-ray-casting/render.h"
 #include "02-whitted/whitted.h"
 #include "03-acceleration/bvh_aggregate.h"
-#include "common/cli.h"
+#include "common/stage_program.h"
 
 #include <atomic>
 #include <chrono>
@@ -44,21 +44,21 @@ int main(int argc, char** argv) {
 
   return run_stage_program(
       argc, argv, "stage3", "Stage 3: Whitted ray tracing over a bounding volume hierarchy", options,
-      [&](CLI::App& app) {
-        add_max_depth_flag(app, options);
-        app.add_option("--accel", accel_name, "Acceleration structure: naive (every primitive), median, middle or sah")
-            ->check(CLI::IsMember({"naive", "median", "middle", "sah"}));
-        app.add_option("--leaf-size", leaf_size, "Largest leaf a BVH builder makes without trying to split")
-            ->transform(decimal(1, 255));
-        CLI::Option* wide_flag = app.add_flag("--wide", wide,
-                     "Traverse a 4-wide tree collapsed from the binary one (four box tests at once), testing "
-                     "triangles with their corners in SIMD lanes");
-        app.add_flag("--compact", compact,
-                     "With --wide: store each leaf's triangles as vertex numbers in their mesh and read the corners "
-                     "from it at every test (40 % less memory; leaves that mix meshes stay slots)")
-            ->needs(wide_flag);
-        app.add_option("--debug", debug_name, "Debug view instead of shading: none, normal, depth, albedo")
-            ->check(CLI::IsMember({"none", "normal", "depth", "albedo"}));
+      [&](StageFlags& flags) {
+        flags.add_max_depth(options);
+        flags.add_word("--accel", accel_name, {"naive", "median", "middle", "sah"},
+                       "Acceleration structure: naive (every primitive), median, middle or sah");
+        flags.add("--leaf-size", leaf_size, "Largest leaf a BVH builder makes without trying to split",
+                  decimal_in(1, 255));
+        flags.add_switch("--wide", wide,
+                         "Traverse a 4-wide tree collapsed from the binary one (four box tests at once), testing "
+                         "triangles with their corners in SIMD lanes");
+        flags.add_switch("--compact", compact,
+                         "With --wide: store each leaf's triangles as vertex numbers in their mesh and read the "
+                         "corners from it at every test (40 % less memory; leaves that mix meshes stay slots)",
+                         "--wide");
+        flags.add_word("--debug", debug_name, {"none", "normal", "depth", "albedo"},
+                       "Debug view instead of shading: none, normal, depth, albedo");
       },
       [&] {
         const DebugView view = debug_view_from_name(debug_name);

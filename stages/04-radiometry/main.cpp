@@ -2,9 +2,8 @@
 #include "01-ray-casting/render.h"
 #include "04-radiometry/direct_lighting.h"
 #include "04-radiometry/light_sampling_flags.h"
-#include "common/cli.h"
+#include "common/stage_program.h"
 
-#include <map>
 
 int main(int argc, char** argv) {
   using namespace rt;
@@ -14,22 +13,20 @@ int main(int argc, char** argv) {
 
   return run_stage_program(
       argc, argv, "stage4", "Stage 4: direct lighting by Monte Carlo integration of the reflection equation", options,
-      [&](CLI::App& app) {
-        add_max_depth_flag(app, options);
-        app.add_option("--estimator", direct.estimator,
-                       "How directions are chosen: uniform (hemisphere), cosine (hemisphere), brdf, or light "
-                       "(emitter sampling, the default)")
-            ->transform(CLI::CheckedTransformer(std::map<std::string, DirectEstimator>{
-                {"uniform", DirectEstimator::uniform_hemisphere},
-                {"cosine", DirectEstimator::cosine_hemisphere},
-                {"brdf", DirectEstimator::brdf},
-                {"light", DirectEstimator::light}}));
-        app.add_option("--sphere-sampling", lighting.sphere_sampling,
-                       "How sphere lights are sampled: cone (the directions they subtend, default) or area")
-            ->transform(CLI::CheckedTransformer(std::map<std::string, SphereSampling>{
-                {"cone", SphereSampling::cone}, {"area", SphereSampling::area}}));
-        add_rectangle_sampling_flag(app, lighting);
-        add_environment_sampling_flag(app, lighting);
+      [&](StageFlags& flags) {
+        flags.add_max_depth(options);
+        flags.add_choice("--estimator", direct.estimator,
+                         {{"uniform", DirectEstimator::uniform_hemisphere},
+                          {"cosine", DirectEstimator::cosine_hemisphere},
+                          {"brdf", DirectEstimator::brdf},
+                          {"light", DirectEstimator::light}},
+                         "How directions are chosen: uniform (hemisphere), cosine (hemisphere), brdf, or light "
+                         "(emitter sampling, the default)");
+        flags.add_choice("--sphere-sampling", lighting.sphere_sampling,
+                         {{"cone", SphereSampling::cone}, {"area", SphereSampling::area}},
+                         "How sphere lights are sampled: cone (the directions they subtend, default) or area");
+        add_rectangle_sampling_flag(flags, lighting);
+        add_environment_sampling_flag(flags, lighting);
       },
       [&] {
         const SceneDescription description = load_scene(options.scene);

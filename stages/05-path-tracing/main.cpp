@@ -2,13 +2,14 @@
 #include "01-ray-casting/render.h"
 #include "04-radiometry/light_sampling_flags.h"
 #include "05-path-tracing/path_render.h"
-#include "common/cli.h"
 #include "common/error.h"
 #include "common/heat_map.h"
 #include "common/image_io.h"
 #include "common/sample_batch.h"
+#include "common/stage_program.h"
 
-#include <map>
+#include <utility>
+#include <vector>
 
 int main(int argc, char** argv) {
   using namespace rt;
@@ -22,31 +23,29 @@ int main(int argc, char** argv) {
 
   return run_stage_program(
       argc, argv, "stage5", "Stage 5: Monte Carlo path tracing", options,
-      [&](CLI::App& app) {
-        add_max_depth_flag(app, options);
-        std::map<std::string, PathIntegrator> integrators;
-        for (const PathIntegrator i : kPathIntegrators) integrators[integrator_name(i)] = i;
-        app.add_option("--integrator", path.integrator,
-                       "naive (BRDF sampling, fixed depth), rr (Russian roulette), nee (light sampling), "
-                       "or mis (the default)")
-            ->transform(CLI::CheckedTransformer(integrators));
-        app.add_option("--roulette-start", path.roulette_start,
-                       "Bounces before Russian roulette may end a path (rr, nee, mis; default 4)")
-            ->transform(decimal(0, 1000));
-        app.add_option("--sampler", sampler, "independent (random numbers) or sobol (scrambled Sobol, the default)")
-            ->transform(CLI::CheckedTransformer(std::map<std::string, SamplerKind>{
-                {sampler_name(SamplerKind::independent), SamplerKind::independent},
-                {sampler_name(SamplerKind::sobol), SamplerKind::sobol}}));
-        add_rectangle_sampling_flag(app, lighting);
-        add_environment_sampling_flag(app, lighting);
-        app.add_option("--adaptive", adaptive_tolerance,
-                       "Adaptive sampling: each pixel stops once the 95% confidence interval of its mean is within "
-                       "this fraction of it (e.g. 0.05), after at least --adaptive-min-spp and at most --spp paths")
-            ->transform(finite_range(1e-6, 1.0));
-        app.add_option("--adaptive-min-spp", adaptive.min_spp, "Paths per pixel before the first test (default 16)")
-            ->transform(decimal(2, kMaxSpp));
-        app.add_option("--sample-map", sample_map,
-                       "Also write a PNG heat map of the paths each pixel took (black: none, pale yellow: --spp)");
+      [&](StageFlags& flags) {
+        flags.add_max_depth(options);
+        std::vector<std::pair<std::string, PathIntegrator>> integrators;
+        for (const PathIntegrator i : kPathIntegrators) integrators.emplace_back(integrator_name(i), i);
+        flags.add_choice("--integrator", path.integrator, integrators,
+                         "naive (BRDF sampling, fixed depth), rr (Russian roulette), nee (light sampling), "
+                         "or mis (the default)");
+        flags.add("--roulette-start", path.roulette_start,
+                  "Bounces before Russian roulette may end a path (rr, nee, mis; default 4)", decimal_in(0, 1000));
+        flags.add_choice("--sampler", sampler,
+                         {{sampler_name(SamplerKind::independent), SamplerKind::independent},
+                          {sampler_name(SamplerKind::sobol), SamplerKind::sobol}},
+                         "independent (random numbers) or sobol (scrambled Sobol, the default)");
+        add_rectangle_sampling_flag(flags, lighting);
+        add_environment_sampling_flag(flags, lighting);
+        flags.add("--adaptive", adaptive_tolerance,
+                  "Adaptive sampling: each pixel stops once the 95% confidence interval of its mean is within "
+                  "this fraction of it (e.g. 0.05), after at least --adaptive-min-spp and at most --spp paths",
+                  finite_in(1e-6, 1.0));
+        flags.add("--adaptive-min-spp", adaptive.min_spp, "Paths per pixel before the first test (default 16)",
+                  decimal_in(2, kMaxSpp));
+        flags.add("--sample-map", sample_map,
+                  "Also write a PNG heat map of the paths each pixel took (black: none, pale yellow: --spp)");
       },
       [&] {
         if (adaptive_tolerance && (options.sample_range || is_batch_path(options.out)))

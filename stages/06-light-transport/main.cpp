@@ -2,11 +2,12 @@
 // progressive photon mapping.
 #include "01-ray-casting/render.h"
 #include "06-light-transport/transport_render.h"
-#include "common/cli.h"
 #include "common/error.h"
 #include "common/sample_batch.h"
+#include "common/stage_program.h"
 
-#include <map>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -31,28 +32,25 @@ int main(int argc, char** argv) {
 
   return run_stage_program(
       argc, argv, "stage6", "Stage 6: light transport beyond path tracing", options,
-      [&](CLI::App& app) {
-        add_max_depth_flag(app, options);
-        std::map<std::string, TransportMethod> methods;
-        for (const TransportMethod m : kTransportMethods) methods[method_name(m)] = m;
-        app.add_option("--method", transport.method,
-                       "pt (stage 5's path tracer), lt (light tracing), bdpt (bidirectional path tracing, the "
-                       "default) or sppm (stochastic progressive photon mapping; --spp is its number of passes)")
-            ->transform(CLI::CheckedTransformer(methods));
-        app.add_option("--strategy", strategy,
-                       "bdpt: render the one strategy s,t alone, unweighted (s light vertices, t camera vertices)");
-        app.add_option("--photons", transport.sppm.photons_per_pass, "sppm: photons per pass (default 100000)")
-            ->transform(decimal(1, 100000000));
-        app.add_option("--radius", transport.sppm.initial_radius,
-                       "sppm: the initial gather radius in scene units (default: one pixel footprint at each "
-                       "pixel's first visible point)")
-            ->transform(finite_range(1e-30, 1e30));
-        app.add_option("--alpha", transport.sppm.alpha,
-                       "sppm: the share of new photons each pass keeps, in (0, 1] (default 2/3)")
-            ->transform(finite_range(1e-6, 1.0));
-        app.add_option("--roulette-start", transport.bdpt.walk.roulette_start,
-                       "Bounces before Russian roulette may end a subpath (default 4)")
-            ->transform(decimal(0, 1000));
+      [&](StageFlags& flags) {
+        flags.add_max_depth(options);
+        std::vector<std::pair<std::string, TransportMethod>> methods;
+        for (const TransportMethod m : kTransportMethods) methods.emplace_back(method_name(m), m);
+        flags.add_choice("--method", transport.method, methods,
+                         "pt (stage 5's path tracer), lt (light tracing), bdpt (bidirectional path tracing, the "
+                         "default) or sppm (stochastic progressive photon mapping; --spp is its number of passes)");
+        flags.add("--strategy", strategy,
+                  "bdpt: render the one strategy s,t alone, unweighted (s light vertices, t camera vertices)");
+        flags.add("--photons", transport.sppm.photons_per_pass, "sppm: photons per pass (default 100000)",
+                  decimal_in(1, 100000000));
+        flags.add("--radius", transport.sppm.initial_radius,
+                  "sppm: the initial gather radius in scene units (default: one pixel footprint at each "
+                  "pixel's first visible point)",
+                  finite_in(1e-30, 1e30));
+        flags.add("--alpha", transport.sppm.alpha,
+                  "sppm: the share of new photons each pass keeps, in (0, 1] (default 2/3)", finite_in(1e-6, 1.0));
+        flags.add("--roulette-start", transport.bdpt.walk.roulette_start,
+                  "Bounces before Russian roulette may end a subpath (default 4)", decimal_in(0, 1000));
       },
       [&] {
         const bool splits = transport.method != TransportMethod::pt;

@@ -1,0 +1,85 @@
+// The shell of every stage program: the common command line (common/options.h), the stage's own
+// flags, then the render. The flags are registered through StageFlags, a small interface that
+// keeps CLI11 out of the stage programs: CLI11 costs seconds of compile time in every file that
+// includes it (docs/build.md), and a stage program is compiled again whenever a task header
+// changes. StageFlags and run_stage_program are defined in common/cli.cpp, which sees CLI11.
+#pragma once
+
+#include "common/options.h"
+
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace rt {
+
+// How a number flag's text is checked (common/cli.cpp gives each rule as a CLI11 check).
+struct FlagRule {
+  enum class Kind { any, decimal, finite } kind = Kind::any;
+  double lo = 0.0, hi = 0.0;
+};
+// Decimal digits only, an integer in [lo, hi].
+inline FlagRule decimal_in(std::uint64_t lo, std::uint64_t hi) {
+  return {FlagRule::Kind::decimal, double(lo), double(hi)};
+}
+// A finite number in [lo, hi].
+inline FlagRule finite_in(double lo, double hi) { return {FlagRule::Kind::finite, lo, hi}; }
+
+// The flags a stage adds to the common ones, each bound to the variable it sets.
+class StageFlags {
+ public:
+  explicit StageFlags(CLI::App& app) : app_(app) {}
+
+  void add(const std::string& name, int& value, const std::string& help, FlagRule rule = {});
+  void add(const std::string& name, float& value, const std::string& help, FlagRule rule = {});
+  void add(const std::string& name, std::optional<float>& value, const std::string& help, FlagRule rule = {});
+  void add(const std::string& name, std::string& value, const std::string& help);
+  // A word from `words`.
+  void add_word(const std::string& name, std::string& value, const std::vector<std::string>& words,
+                const std::string& help);
+  // A word from `words`, each naming a value of the enum.
+  template <class Enum>
+  void add_choice(const std::string& name, Enum& value, const std::vector<std::pair<std::string, Enum>>& words,
+                  const std::string& help) {
+    std::vector<std::pair<std::string, int>> numbers;
+    for (const auto& [word, choice] : words) numbers.emplace_back(word, static_cast<int>(choice));
+    int& number = numbers_.emplace_back(static_cast<int>(value));
+    write_backs_.push_back([&value, &number] { value = static_cast<Enum>(number); });
+    add_choice_number(name, number, numbers, help);
+  }
+  // A switch without a value; `needs`: a switch it may only come with.
+  void add_switch(const std::string& name, bool& value, const std::string& help, const std::string& needs = "");
+  // --max-depth, for the stage programs that follow rays recursively (stage 2 on).
+  void add_max_depth(CommonOptions& options);
+
+  // After parsing: the enums take the numbers their words were read as.
+  void write_back() const {
+    for (const std::function<void()>& write : write_backs_) write();
+  }
+
+ private:
+  void add_choice_number(const std::string& name, int& number, const std::vector<std::pair<std::string, int>>& words,
+                         const std::string& help);
+
+  CLI::App& app_;
+  std::deque<int> numbers_;  // a deque: the numbers stay where the parser was told they are
+  std::vector<std::function<void()>> write_backs_;
+};
+
+// Parses the command line into `options` (plus whatever `add_stage_flags` registered), then calls
+// `run`. Maps --help to exit 0, usage errors to 2 and InputError to 1, each with one line on stderr
+// that starts with the program name. The output path is checked before `run` is called, so no
+// render is wasted on an unwritable path.
+int run_stage_program(int argc, char** argv, const std::string& program, const std::string& title,
+                      CommonOptions& options, const std::function<void(StageFlags&)>& add_stage_flags,
+                      const std::function<void()>& run);
+
+}  // namespace rt
