@@ -3,8 +3,10 @@
 
     cmake --build --preset stageN && ctest --preset stageN -R 'TESTS'
 
-after a change to the task's file (the file is touched, not changed), where TESTS are the tests
-the stage's handout lists for the task. The tree must be configured (cmake --preset release); the
+after a change to the task's file, where TESTS are the tests the stage's handout lists for the
+task. Each round appends a different `static_assert` line to the file, so that the code the
+compiler sees changes as an edit's does (a touch, or a comment, would let ccache return the
+objects compiled before); the file is restored at the end. The tree must be configured (cmake --preset release); the
 first, untimed round builds whatever is missing.
 
     tools/student_loop.py TASK [--rounds N] [--tree DIR]     e.g. tools/student_loop.py stage1.sphere.stable
@@ -13,9 +15,9 @@ Prints each round's build and test seconds and the median of the loop. A failing
 (exit 1); failing tests do not: on a starter tree they fail, and that run is the student's loop too.
 """
 import argparse
-import os
 import pathlib
 import re
+import signal
 import statistics
 import subprocess
 import sys
@@ -41,8 +43,11 @@ def ctest_regex(patterns):
 
 
 def timed(command, tree):
+    """Seconds the command took and its exit code; a failing build's output is shown."""
     start = time.monotonic()
-    done = subprocess.run(command, cwd=tree, stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
+    done = subprocess.run(command, cwd=tree, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    if done.returncode != 0 and command[1] == "--build":
+        sys.stdout.write(done.stdout.decode(errors="replace")[-4000:])
     return time.monotonic() - start, done.returncode
 
 
@@ -62,15 +67,20 @@ def main():
     if timed(build, tree)[1] != 0:
         raise SystemExit(f"student_loop: {' '.join(build)} failed (configure first: cmake --preset release)")
     loops = []
-    for round_ in range(1, args.rounds + 1):
-        os.utime(path)  # what an edit does to the build: the file is newer than its object
-        build_seconds, code = timed(build, tree)
-        if code != 0:
-            raise SystemExit(f"student_loop: {' '.join(build)} failed")
-        test_seconds, _ = timed(test, tree)
-        loops.append(build_seconds + test_seconds)
-        print(f"student_loop: round {round_}: build {build_seconds:.1f} s, tests {test_seconds:.1f} s, "
-              f"loop {loops[-1]:.1f} s", flush=True)
+    original = path.read_bytes()
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit("student_loop: stopped"))  # restores the file too
+    try:
+        for round_ in range(1, args.rounds + 1):
+            path.write_bytes(original + f'static_assert(true, "student_loop.py round {round_} at {time.time()}");\n'.encode())
+            build_seconds, code = timed(build, tree)
+            if code != 0:
+                raise SystemExit(f"student_loop: {' '.join(build)} failed")
+            test_seconds, _ = timed(test, tree)
+            loops.append(build_seconds + test_seconds)
+            print(f"student_loop: round {round_}: build {build_seconds:.1f} s, tests {test_seconds:.1f} s, "
+                  f"loop {loops[-1]:.1f} s", flush=True)
+    finally:
+        path.write_bytes(original)
     print(f"student_loop: {args.task}: median loop {statistics.median(loops):.1f} s over {len(loops)} rounds")
     return 0
 
