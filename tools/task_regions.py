@@ -12,8 +12,10 @@ BEGIN = re.compile(r"^(\s*)// BEGIN TASK (\S+)\s*$")
 PLACEHOLDER = re.compile(r"^\s*// PLACEHOLDER\s*$")
 END = re.compile(r"^\s*// END TASK\s*$")
 TASK_ID = re.compile(r"^stage(\d+)\.[a-z0-9_]+\.[a-z0-9_]+$")
-# A handout table row: | `stage1.camera.ray` | `camera_rays.cpp` | what | `Tests.*`, ... |
-HANDOUT_ROW = re.compile(r"^\|\s*`(stage\d+\.[a-z0-9_]+\.[a-z0-9_]+)`\s*\|([^|]*)\|([^|]*)\|([^|]*)\|\s*$")
+# A Tasks table row: | `task id` | file | what | tests | and, optionally, the tasks its tests also
+# reach (tools/task_prerequisites.py). A cell may hold escaped bars (\|).
+_CELL = r"((?:[^|\\]|\\.)*)"
+HANDOUT_ROW = re.compile(r"^\|\s*`(stage\d+\.[a-z0-9_]+\.[a-z0-9_]+)`\s*\|" + rf"{_CELL}\|{_CELL}\|{_CELL}\|(?:{_CELL}\|)?\s*$")
 HANDOUT_ID = re.compile(r"`(stage\d+\.[a-z0-9_]+\.[a-z0-9_]+)`")
 
 
@@ -91,7 +93,8 @@ def handout_tasks(root, stage):
         for line in handout.read_text().splitlines():
             if m := HANDOUT_ROW.match(line):
                 tests = re.findall(r"`([^`]+)`", m.group(4))
-                tasks[m.group(1)] = HandoutTask(m.group(2).strip().strip("`"), m.group(3).strip(), tests)
+                what = m.group(3).strip().replace("\\|", "|")  # a table cell escapes its bars
+                tasks[m.group(1)] = HandoutTask(m.group(2).strip().strip("`"), what, tests)
     return tasks
 
 

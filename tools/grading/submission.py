@@ -14,6 +14,7 @@ process, starting others, writing files, assembly): the grader cannot stop code 
 test's own process from misbehaving, so it points the instructor at it (report.md, "Flags").
 """
 import dataclasses
+import functools
 import fnmatch
 import pathlib
 import re
@@ -66,10 +67,17 @@ def editable_files(root, spec):
     return sorted(p.relative_to(root).as_posix() for p in sources if task_regions.parse(p, []))
 
 
+@functools.lru_cache(maxsize=4)
+def handouts_of(root):
+    """The Tasks tables, from which the starter's TODO comments are written."""
+    return {stage: task_regions.handout_tasks(root, stage) for stage, _ in task_regions.stage_folders(root)}
+
+
 def starter_version(root, relative):
-    """The starter tree's text of an editable file: every task's placeholder (tools/make_starter.py)."""
+    """The starter tree's text of an editable file, byte for byte what tools/make_starter.py
+    writes (a prepared build made from it then compiles nothing for an unchanged file)."""
     path = pathlib.Path(root) / relative
-    text = make_starter.strip_file(path, set(range(1, 100)), [], {})
+    text = make_starter.strip_file(path, set(range(1, 100)), [], handouts_of(pathlib.Path(root)))
     return (text if text is not None else path.read_text()).encode()
 
 
