@@ -9,7 +9,12 @@
 #  - ccache, Debian's compiler cache, when installed: a second build of the same sources (a new
 #    build folder, CI on a machine that built before) compiles nothing.
 # Each is optional: a plain `cmake -S . -B build` without ccache or mold builds the same programs.
-option(RT_PRECOMPILED_HEADERS "Parse the common third-party and standard headers once per build" ON)
+option(RT_PRECOMPILED_HEADERS "Parse the common third-party and standard headers once per build (GCC)" ON)
+# GCC only: Clang (the fuzz preset) refuses a precompiled header that expands __DATE__ or
+# __TIME__ (-Wpch-date-time), as PCG's pcg_extras.hpp does, and its builds here are small.
+if(RT_PRECOMPILED_HEADERS AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  set(rt_precompiled_headers TRUE)
+endif()
 option(RT_USE_CCACHE "Compile through ccache when it is installed" ON)
 option(RT_USE_MOLD "Link with mold when it is installed" ON)
 
@@ -49,7 +54,7 @@ target_compile_options(rt_test_flags INTERFACE $<$<CONFIG:Release>:${RT_TEST_OPT
 # The targets whose precompiled headers the others reuse. Each carries rt::flags, so that its
 # compile flags are those of every target that reuses it: GCC ignores a header precompiled with
 # other flags and parses the headers instead (slower, never wrong).
-if(RT_PRECOMPILED_HEADERS)
+if(rt_precompiled_headers)
   add_library(rt_pch_library OBJECT ${PROJECT_SOURCE_DIR}/cmake/pch/empty.cpp)
   target_link_libraries(rt_pch_library PRIVATE rt::flags glm::glm pcg)
   target_precompile_headers(rt_pch_library PRIVATE ${PROJECT_SOURCE_DIR}/cmake/pch/library.h)
@@ -70,7 +75,7 @@ function(rt_precompiled_header_checksum target)
   add_custom_target(${target}_sum DEPENDS ${header}.sum)
 endfunction()
 
-if(RT_PRECOMPILED_HEADERS AND rt_compiles_through_ccache)
+if(rt_precompiled_headers AND rt_compiles_through_ccache)
   rt_precompiled_header_checksum(rt_pch_library)
   if(RT_BUILD_TESTS)
     rt_precompiled_header_checksum(rt_pch_test)
@@ -81,7 +86,7 @@ endif()
 # reuses the shared headers: a test program (name ending in _tests) the test set, any other the
 # library set. Called once, after every target exists, so no CMakeLists.txt has to remember it.
 function(rt_use_precompiled_headers directory)
-  if(NOT RT_PRECOMPILED_HEADERS)
+  if(NOT rt_precompiled_headers)
     return()
   endif()
   get_property(targets DIRECTORY ${directory} PROPERTY BUILDSYSTEM_TARGETS)
