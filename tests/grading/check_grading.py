@@ -236,7 +236,7 @@ def check_hostile(work, starter, starter_outcomes, problems):
     spec = json.loads((ROOT / "grading" / "manifest.json").read_text())
     check = spec["stages"]["1"]["renders"][0]
     own = work / "starter-render.pfm"
-    subprocess.run([starter / "build/release/bin/stage1", "--scene", starter / check["scene"], "--out", own,
+    subprocess.run([PREPARED / "build/bin/stage1", "--scene", starter / check["scene"], "--out", own,
                     "--seed", "1", *check["args"]], check=True, capture_output=True)
     forged = {f"{check['reference']}-mean.pfm": own.read_bytes()}
     hostile.replaced_references(work / "references-tree", starter, forged, marker)
