@@ -21,6 +21,7 @@ packages=(
   python3-numpy                   # the grader's image statistics (tools/grade.py)
   bubblewrap                      # the grader's sandbox (tools/grading/sandbox.py)
   clang libclang-rt-14-dev        # libFuzzer for the fuzz targets (preset fuzz, tests/fuzz/run.sh)
+  ccache mold                     # optional build accelerators: compiler cache, fast linker (cmake/BuildSpeed.cmake)
 )
 
 missing=()
