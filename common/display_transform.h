@@ -39,9 +39,6 @@ struct DisplayTransform {
   float gamma = 2.2f;  // the power-law transfer's exponent
 };
 
-// Relative luminance of linear Rec. 709 RGB (BT.709 item 3.2; the sRGB standard's Y row).
-inline float luminance(const Color& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
-
 // Reinhard, Stark, Shirley and Ferwerda, "Photographic Tone Reproduction for Digital Images",
 // SIGGRAPH 2002, eq. 4: L_d = L (1 + L / L_white^2) / (1 + L). Monotone for L >= 0, 0 at 0, and
 // exactly 1 at L = L_white (beyond it the result is clamped to 1): "burns out" only above white.

@@ -23,6 +23,10 @@ inline constexpr float kPi = 3.14159265358979323846f;
 inline constexpr float kInvPi = 1.0f / kPi;
 inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
+// Relative luminance of linear Rec. 709 / sRGB RGB (ITU-R BT.709 item 3.2; the sRGB standard's Y
+// row): "how bright" as one number, for tone mapping and for comparing coloured lights' power.
+inline float luminance(Color c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
 inline float max_component(Vec3 v) { return std::max({v.x, v.y, v.z}); }
 inline float min_component(Vec3 v) { return std::min({v.x, v.y, v.z}); }
 // v[axis] for an axis known only at run time, read as an array element. GLM's operator[] is a

@@ -17,10 +17,6 @@
 
 namespace rt {
 
-// Luminance of a linear RGB colour, Rec. 709 / sRGB primaries (ITU-R BT.709): the weights that
-// make "how bright" one number, used to compare the power of coloured lights.
-inline float luminance(Color c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
 // Solid angle of a cone of half-angle theta_max: 2 pi (1 - cos(theta_max)).
 inline float cone_solid_angle(float cos_theta_max) { return 2.0f * kPi * (1.0f - cos_theta_max); }
 

@@ -6,6 +6,7 @@
 #include "04-radiometry/radiometry.h"
 #include "04-radiometry/warp.h"
 #include "common/random.h"
+#include "support/sample_mean.h"
 
 #include <gtest/gtest.h>
 
@@ -14,13 +15,7 @@
 namespace rt {
 namespace {
 
-struct Mean {
-  double sum = 0, sum2 = 0;
-  int n = 0;
-  void add(double v) { sum += v, sum2 += v * v, ++n; }
-  double mean() const { return sum / n; }
-  double standard_error() const { return std::sqrt(std::max(0.0, sum2 / n - mean() * mean()) / n); }
-};
+using Mean = testing::SampleMean;
 
 TEST(HiddenWarp, CosineHemisphereHasMeanCosineTwoThirds) {
   // E[cos] under p = cos / pi is (1/pi) * integral of cos^2 = 2/3; E[cos^2] = 1/2.

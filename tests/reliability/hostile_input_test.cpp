@@ -10,6 +10,7 @@
 #include "common/scene.h"
 
 #include "reliability/child_process.h"
+#include "reliability/stage_programs.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
@@ -31,9 +32,9 @@ using testing::ScratchDir;
 using testing::source_path;
 using testing::write_text;
 
-const char* const kPrograms[] = {STAGE1_EXE, STAGE2_EXE, STAGE3_EXE, STAGE4_EXE, STAGE5_EXE, STAGE6_EXE};
-const char* const kMeshPrograms[] = {STAGE2_EXE, STAGE3_EXE, STAGE4_EXE, STAGE5_EXE, STAGE6_EXE};
-const char* const kEmitterPrograms[] = {STAGE4_EXE, STAGE5_EXE, STAGE6_EXE};
+using testing::kPrograms;
+using testing::kMeshPrograms;
+using testing::kEmitterPrograms;
 constexpr const char* kCamera = R"("camera": {"position": [0, 0, -5], "look_at": [0, 0, 0], "vfov": 30})";
 
 std::string scene_with(const std::string& materials, const std::string& shapes, const std::string& camera = kCamera) {

@@ -12,6 +12,7 @@
 #include "common/sample_batch.h"
 
 #include "reliability/child_process.h"
+#include "reliability/stage_programs.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
@@ -36,8 +37,8 @@ using testing::source_path;
 using testing::write_text;
 using testing::ChildProcess;
 
-const char* const kPrograms[] = {STAGE1_EXE, STAGE2_EXE, STAGE3_EXE, STAGE4_EXE, STAGE5_EXE, STAGE6_EXE};
-const char* const kMeshPrograms[] = {STAGE2_EXE, STAGE3_EXE, STAGE4_EXE, STAGE5_EXE, STAGE6_EXE};
+using testing::kPrograms;
+using testing::kMeshPrograms;
 
 // A scene every stage renders: one diffuse sphere under a point light.
 constexpr const char* kSphere = R"({"camera": {"position": [0, 0, -5], "look_at": [0, 0, 0], "vfov": 30},

@@ -13,6 +13,7 @@
 #include "fuzz/batch_inputs.h"
 #include "fuzz/image_input.h"
 #include "reliability/child_process.h"
+#include "reliability/stage_programs.h"
 #include "support/glowing_room.h"
 #include "support/test_support.h"
 
@@ -31,7 +32,7 @@ using testing::ChildProcess;
 using testing::ScratchDir;
 using testing::source_path;
 
-const char* const kPrograms[] = {STAGE1_EXE, STAGE2_EXE, STAGE3_EXE, STAGE4_EXE, STAGE5_EXE, STAGE6_EXE};
+using testing::kPrograms;
 
 // Loads, or is refused with InputError: one line that names the source.
 template <class Load>

@@ -128,7 +128,7 @@ TEST(PixelFilter, WeightsCarryTheSignOfTheFilterAndOnlyThat) {
 
 // A scene that is one constant radiance everywhere (the background).
 constexpr float kConstant = 0.37f;
-const Camera kCamera(CameraSpec{Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), Vec3(0.0f, 1.0f, 0.0f), 60.0f}, 16, 16);
+const Camera kFilterCamera(CameraSpec{Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), Vec3(0.0f, 1.0f, 0.0f), 60.0f}, 16, 16);
 
 RenderSettings settings_with(PixelFilterType type, int spp) {
   RenderSettings s;
@@ -142,7 +142,7 @@ RenderSettings settings_with(PixelFilterType type, int spp) {
 TEST(FilterRender, AConstantSceneGivesTheConstantThroughEveryFilter) {
   for (const PixelFilterType type : kAllFilters) {
     const PixelFilter f(type);
-    const Image image = render_image(kCamera, settings_with(type, 64), 1, [](const Ray&, Rng&) { return Color(kConstant); });
+    const Image image = render_image(kFilterCamera, settings_with(type, 64), 1, [](const Ray&, Rng&) { return Color(kConstant); });
     double mean = 0.0;
     for (const Color& c : image.pixels()) {
       if (!f.has_negative_lobes()) {

@@ -3,19 +3,19 @@
 #include "02-whitted/triangle_ray.h"
 #include "experiments/triangle_leaks.h"
 #include "stage2/aimed_rays.h"
+#include "support/test_support.h"
 
 #include <gtest/gtest.h>
 
-#include <cstring>
 
 namespace rt {
 namespace {
 
-bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using testing::same_bits;
 
 // Counts the cases where the two tests disagree (a hit against a miss, or any bit of t, b1, b2),
 // and how many of the cases were hits, so that a test can insist on both kinds.
-struct Agreement {
+struct LaneAgreement {
   int cases = 0, hits = 0, disagreements = 0;
 
   void check(const Ray& ray, Vec3 v0, Vec3 v1, Vec3 v2, Interval range) {
@@ -39,7 +39,7 @@ struct Agreement {
 // them (aimed_rays.h: zero direction components, short ranges, rays that start on the triangle).
 TEST(TriangleLanes, AnswersAsTheWatertightTestBitForBit) {
   Rng rng(7, 0, 0);
-  Agreement agreement;
+  LaneAgreement agreement;
   for (int i = 0; i < 200000; ++i) {
     const float size = std::pow(10.0f, -3.0f + 6.0f * rng.uniform());
     const Vec3 centre = random_point(rng) * std::pow(10.0f, 3.0f * rng.uniform());
@@ -61,7 +61,7 @@ TEST(TriangleLanes, AnswersAsTheWatertightTestOnEdgesAndCorners) {
                              {{0, 0, 0}, {2, 0, 1}, {0, 2, 2}},
                              {{-1, -1, 3}, {1, -1, 3}, {0, 1, 3}},
                              {{0, 0, 0}, {0, 4, 0}, {0, 0, 4}}};
-  Agreement agreement;
+  LaneAgreement agreement;
   for (const auto& v : corners)
     for (int a = 0; a < 3; ++a)
       for (int step = 0; step <= 4; ++step) {

@@ -4,22 +4,22 @@
 #include "02-whitted/triangle_ray.h"
 #include "experiments/triangle_leaks.h"
 #include "stage2/aimed_rays.h"
+#include "support/test_support.h"
 
 #include <gtest/gtest.h>
 
 #include <array>
-#include <cstring>
 
 namespace rt {
 namespace {
 
-bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using testing::same_bits;
 
-using Triangle = std::array<Vec3, 3>;
+using Corners = std::array<Vec3, 3>;
 
 // What the pack must answer: the scalar test on each of the first `count` triangles in turn, the
 // range shrinking at each hit (so a later triangle at the same t is not taken).
-std::optional<PackHit> one_at_a_time(const TriangleRay& ray, const Triangle* triangles, int count, Interval range) {
+std::optional<PackHit> one_at_a_time(const TriangleRay& ray, const Corners* triangles, int count, Interval range) {
   std::optional<PackHit> nearest;
   for (int lane = 0; lane < count; ++lane)
     if (const auto hit = intersect_triangle_watertight(ray.watertight, triangles[lane][0], triangles[lane][1],
@@ -30,7 +30,7 @@ std::optional<PackHit> one_at_a_time(const TriangleRay& ray, const Triangle* tri
   return nearest;
 }
 
-TrianglePack pack_of(const Triangle* triangles, int count) {
+TrianglePack pack_of(const Corners* triangles, int count) {
   std::array<TriangleCorners, TrianglePack::kLanes> corners;
   for (int i = 0; i < count; ++i) corners[size_t(i)] = TriangleCorners(triangles[i][0], triangles[i][1], triangles[i][2]);
   return TrianglePack(std::span<const TriangleCorners>(corners.data(), size_t(count)));
@@ -38,10 +38,10 @@ TrianglePack pack_of(const Triangle* triangles, int count) {
 
 // Counts disagreements (hit against miss, another lane, or any bit of t, b1, b2) and hits; check
 // returns the pack's answer.
-struct Agreement {
+struct PackAgreement {
   int cases = 0, hits = 0, disagreements = 0;
 
-  std::optional<PackHit> check(const Ray& ray, const Triangle* triangles, int count, Interval range) {
+  std::optional<PackHit> check(const Ray& ray, const Corners* triangles, int count, Interval range) {
     const TriangleRay prepared(ray);
     const std::optional<PackHit> expected = one_at_a_time(prepared, triangles, count, range);
     const std::optional<PackHit> pack =
@@ -64,15 +64,15 @@ struct Agreement {
 // rays that start on the triangle).
 TEST(TrianglePack, AnswersAsTheWatertightTestLaneByLane) {
   Rng rng(11, 0, 0);
-  Agreement agreement;
+  PackAgreement agreement;
   for (int i = 0; i < 100000; ++i) {
     const int count = 1 + i % 4;
     const float size = std::pow(10.0f, -3.0f + 6.0f * rng.uniform());
     const Vec3 centre = random_point(rng) * std::pow(10.0f, 3.0f * rng.uniform());
-    Triangle triangles[4];
+    Corners triangles[4];
     for (int k = 0; k < count; ++k)
       for (Vec3& v : triangles[k]) v = centre + size * random_point(rng);
-    const Triangle& t = triangles[int(rng.uniform() * float(count)) % count];
+    const Corners& t = triangles[int(rng.uniform() * float(count)) % count];
     if (const std::optional<AimedRay> aimed = aimed_ray(rng, i, t[0], t[1], t[2], size))
       agreement.check(aimed->ray, triangles, count, aimed->range);
   }
@@ -87,9 +87,9 @@ TEST(TrianglePack, AnswersAsTheWatertightTestLaneByLane) {
 // and a vertical ray through a point of the tent (a height field) hits it: none slips between.
 TEST(TrianglePack, AnswersOnSharedEdgesAndTheSharedVertex) {
   const Vec3 apex(0, 0, 1), rim[4] = {{2, 0, 0}, {0, 2, 0}, {-2, 0, 0}, {0, -2, 0}};
-  Triangle fan[4];
+  Corners fan[4];
   for (int k = 0; k < 4; ++k) fan[k] = {apex, rim[k], rim[(k + 1) % 4]};
-  Agreement agreement;
+  PackAgreement agreement;
   int vertical = 0, vertical_hits = 0;
   for (int k = 0; k < 4; ++k)
     for (int step = 0; step <= 4; ++step) {
@@ -114,10 +114,10 @@ TEST(TrianglePack, AnswersOnSharedEdgesAndTheSharedVertex) {
 TEST(TrianglePack, AnswersOnTheEdgesOfAClosedMeshAndLetsNoRayThrough) {
   for (const float scale : {1e-3f, 1.0f, 1e3f, 1e5f}) {
     const LeakSetup setup = make_leak_setup(scale, 4, 2024);
-    std::vector<Triangle> triangles;
+    std::vector<Corners> triangles;
     for (const auto& c : setup.mesh.triangles)
       triangles.push_back({setup.mesh.positions[c[0]], setup.mesh.positions[c[1]], setup.mesh.positions[c[2]]});
-    Agreement agreement;
+    PackAgreement agreement;
     int leaks = 0;
     for (const auto* rays : {&setup.edge_rays, &setup.vertex_rays})
       for (const Ray& ray : *rays) {
@@ -137,17 +137,17 @@ TEST(TrianglePack, AnswersOnTheEdgesOfAClosedMeshAndLetsNoRayThrough) {
 // lane 1, as testing one lane after another with a shrinking range would. A pack of fewer than four
 // repeats its first triangle, which must never be named instead of it.
 TEST(TrianglePack, ATieGoesToTheLowestLane) {
-  const Triangle far{{{-1, -1, 5}, {1, -1, 5}, {0, 1, 5}}};
-  const Triangle near{{{-1, -1, 2}, {1, -1, 2}, {0, 1, 2}}};
-  const Triangle aside{{{10, 10, 1}, {11, 10, 1}, {10, 11, 1}}};
+  const Corners far{{{-1, -1, 5}, {1, -1, 5}, {0, 1, 5}}};
+  const Corners near{{{-1, -1, 2}, {1, -1, 2}, {0, 1, 2}}};
+  const Corners aside{{{10, 10, 1}, {11, 10, 1}, {10, 11, 1}}};
   const Ray ray{Vec3(0, 0, 0), Vec3(0, 0, 1)};
   const TriangleRay prepared(ray);
-  const Triangle twins[4] = {far, near, aside, near};
+  const Corners twins[4] = {far, near, aside, near};
   const auto hit = intersect_triangle_pack(prepared.watertight, prepared.lanes, pack_of(twins, 4), Interval::positive());
   ASSERT_TRUE(hit.has_value());
   EXPECT_EQ(hit->lane, 1);
   EXPECT_EQ(hit->t, 2.0f);
-  const Triangle two[2] = {near, far};
+  const Corners two[2] = {near, far};
   const auto partial = intersect_triangle_pack(prepared.watertight, prepared.lanes, pack_of(two, 2), Interval::positive());
   ASSERT_TRUE(partial.has_value());
   EXPECT_EQ(partial->lane, 0);

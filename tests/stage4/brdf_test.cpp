@@ -5,6 +5,7 @@
 #include "04-radiometry/bsdf.h"
 #include "04-radiometry/warp.h"
 #include "support/chi_square.h"
+#include "support/sample_mean.h"
 
 #include <gtest/gtest.h>
 
@@ -127,23 +128,19 @@ TEST(BrdfProperties, Reciprocity) {
   }
 }
 
+using testing::Estimate;
+
 // Directional albedo rho(wo) = integral f_r cos(theta_i) dwi, estimated with the model's own
 // sampler (mean of the weights) and its standard error.
-struct Estimate {
-  double mean, standard_error;
-};
 Estimate directional_albedo(const Bsdf& brdf, Vec3 wo, int channel, int samples, std::uint64_t seed) {
   Rng rng(seed, 0, 0);
-  double sum = 0.0, sum2 = 0.0;
+  testing::SampleMean m;
   for (int k = 0; k < samples; ++k) {
     const Vec2 u = rng.uniform2();
     const auto s = brdf.sample(wo, u, rng.uniform());
-    const double w = s ? double(s->weight[channel]) : 0.0;
-    sum += w;
-    sum2 += w * w;
+    m.add(s ? double(s->weight[channel]) : 0.0);
   }
-  const double mean = sum / samples;
-  return {mean, std::sqrt(std::max(0.0, sum2 / samples - mean * mean) / samples)};
+  return m.estimate();
 }
 
 TEST(BrdfProperties, NoModelReflectsMoreThanItReceives) {

@@ -4,6 +4,8 @@
 // confidence interval, and with a small enough interval that the test means something.
 #include "04-radiometry/direct_lighting.h"
 #include "closed_form.h"
+#include "direct_estimators.h"
+#include "support/sample_mean.h"
 
 #include <gtest/gtest.h>
 
@@ -15,17 +17,9 @@ namespace {
 constexpr float kAlbedo = 0.5f;
 const Vec3 kAbove(1.5f, 1.2f, 0.0f);  // a viewpoint whose mirror direction off the floor rises at 39 degrees
 
-const DirectEstimator kEstimators[] = {DirectEstimator::uniform_hemisphere, DirectEstimator::cosine_hemisphere,
-                                       DirectEstimator::brdf, DirectEstimator::light};
-const char* name(DirectEstimator e) {
-  switch (e) {
-    case DirectEstimator::uniform_hemisphere: return "uniform";
-    case DirectEstimator::cosine_hemisphere: return "cosine";
-    case DirectEstimator::brdf: return "brdf";
-    case DirectEstimator::light: return "light";
-  }
-  return "?";
-}
+using testing::Estimate;
+using testing::estimator_name;
+using testing::kEstimators;
 
 // A 20 x 20 floor at y = 0 with material `floor`, plus the given shapes and lights.
 LightingScene floor_scene(const std::string& floor_material, const std::string& emitters, const std::string& lights = "[]") {
@@ -37,10 +31,6 @@ LightingScene floor_scene(const std::string& floor_material, const std::string& 
   return LightingScene(parse_scene(json, "closed-form.json"));
 }
 
-struct Estimate {
-  double mean, standard_error;
-};
-
 // The radiance along one fixed ray to the floor point `target`, by default the origin seen from a
 // low position so that the ray passes under every emitter: `samples` independent estimates, their
 // mean and standard error.
@@ -50,22 +40,19 @@ Estimate estimate_at(const LightingScene& scene, DirectEstimator estimator, int 
   const Ray ray{origin, glm::normalize(target - origin)};
   DirectOptions options;
   options.estimator = estimator;
-  double sum = 0.0, sum2 = 0.0;
+  testing::SampleMean m;
   for (int k = 0; k < samples; ++k) {
     Rng rng(seed, 0, std::uint64_t(k));
-    const double v = direct_radiance(scene, ray, options, rng).x;
-    sum += v;
-    sum2 += v * v;
+    m.add(direct_radiance(scene, ray, options, rng).x);
   }
-  const double m = sum / samples;
-  return {m, std::sqrt(std::max(0.0, sum2 / samples - m * m) / samples)};
+  return m.estimate();
 }
 
 void expect_every_estimator_finds(const LightingScene& scene, double exact, int samples) {
   for (const DirectEstimator e : kEstimators) {
     const Estimate est = estimate_at(scene, e, samples);
-    EXPECT_NEAR(est.mean, exact, 4.0 * est.standard_error + 1e-5 * exact) << name(e);
-    EXPECT_LT(est.standard_error, 0.02 * exact) << name(e) << ": too noisy to mean anything";
+    EXPECT_NEAR(est.mean, exact, 4.0 * est.standard_error + 1e-5 * exact) << estimator_name(e);
+    EXPECT_LT(est.standard_error, 0.02 * exact) << estimator_name(e) << ": too noisy to mean anything";
   }
 }
 
@@ -88,8 +75,8 @@ TEST(DirectClosedForm, PointLightInverseSquareAndCosineLaw) {
     const double exact = kAlbedo * 2.5 / kPi;
     for (const DirectEstimator e : kEstimators) {
       const Estimate est = estimate_at(scene, e, 16, p + Vec3(3.0f, 0.2f, 0.0f), p);
-      EXPECT_NEAR(est.mean, exact, 1e-5 * exact) << name(e) << " at " << p.x << ", " << p.z;
-      EXPECT_LT(est.standard_error, 1e-6) << name(e);
+      EXPECT_NEAR(est.mean, exact, 1e-5 * exact) << estimator_name(e) << " at " << p.x << ", " << p.z;
+      EXPECT_LT(est.standard_error, 1e-6) << estimator_name(e);
     }
   }
 }
@@ -120,7 +107,7 @@ TEST(DirectClosedForm, OneSidedEmitterLightsNothingBehindIt) {
   const LightingScene scene = floor_scene(R"({"albedo": [0.5, 0.5, 0.5]})",
                                           R"({"type": "quad", "material": "light",
       "vertices": [[-0.5, 1, -0.5], [-0.5, 1, 0.5], [0.5, 1, 0.5], [0.5, 1, -0.5]]})");
-  for (const DirectEstimator e : kEstimators) EXPECT_EQ(estimate_at(scene, e, 1000).mean, 0.0) << name(e);
+  for (const DirectEstimator e : kEstimators) EXPECT_EQ(estimate_at(scene, e, 1000).mean, 0.0) << estimator_name(e);
 }
 
 TEST(DirectEstimators, AgreeOnGlossySurfaces) {
@@ -136,8 +123,8 @@ TEST(DirectEstimators, AgreeOnGlossySurfaces) {
     for (size_t i = 0; i < estimates.size(); ++i)
       for (size_t j = i + 1; j < estimates.size(); ++j) {
         const double se = std::hypot(estimates[i].standard_error, estimates[j].standard_error);
-        EXPECT_NEAR(estimates[i].mean, estimates[j].mean, 4.0 * se) << floor << ": " << name(kEstimators[i]) << " vs "
-                                                                  << name(kEstimators[j]);
+        EXPECT_NEAR(estimates[i].mean, estimates[j].mean, 4.0 * se) << floor << ": " << estimator_name(kEstimators[i]) << " vs "
+                                                                  << estimator_name(kEstimators[j]);
       }
   }
 }
@@ -165,7 +152,7 @@ TEST(DirectDelta, EveryEstimatorSeesALightInAMirror) {
       "normal": [1, 0, 0], "radius": 0.5})");
   for (const DirectEstimator e : kEstimators) {
     const Estimate est = estimate_at(scene, e, 8);
-    EXPECT_NEAR(est.mean, 3.2, 1e-5) << name(e);
+    EXPECT_NEAR(est.mean, 3.2, 1e-5) << estimator_name(e);
   }
 }
 
@@ -182,8 +169,8 @@ TEST(DirectRobustness, GrazingAndCornerRaysStayFinite) {
       const Vec3 origin = Vec3(4.0f, 0.0f, 0.0f) * (1.0f + rng.uniform()) + Vec3(0.0f, 1e-3f * rng.uniform(), 0.0f);
       const Vec3 target(rng.uniform() - 0.5f, 0.0f, rng.uniform() - 0.5f);
       const Color l = direct_radiance(scene, Ray{origin, glm::normalize(target - origin)}, options, rng);
-      ASSERT_TRUE(is_finite(l)) << name(e);
-      ASSERT_GE(min_component(l), 0.0f) << name(e);
+      ASSERT_TRUE(is_finite(l)) << estimator_name(e);
+      ASSERT_GE(min_component(l), 0.0f) << estimator_name(e);
     }
   }
 }

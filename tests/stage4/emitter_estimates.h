@@ -5,28 +5,20 @@
 
 #include "04-radiometry/emitters.h"
 #include "common/random.h"
+#include "support/sample_mean.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 
 namespace rt::testing {
 
 // E[g(sample)] over `samples` draws of one generator seeded by `seed`, with its standard error.
-struct Mean {
-  double value = 0.0, standard_error = 0.0;
-};
 template <class G>
-Mean mean_of(int samples, std::uint64_t seed, G&& g) {
+Estimate mean_of(int samples, std::uint64_t seed, G&& g) {
   Rng rng(seed, 0, 0);
-  double sum = 0.0, sum2 = 0.0;
-  for (int k = 0; k < samples; ++k) {
-    const double v = g(rng);
-    sum += v;
-    sum2 += v * v;
-  }
-  const double m = sum / samples;
-  return {m, std::sqrt(std::max(0.0, sum2 / samples - m * m) / samples)};
+  SampleMean m;
+  for (int k = 0; k < samples; ++k) m.add(g(rng));
+  return m.estimate();
 }
 
 // cos(theta_x) / p(w) for one sample that x sees from the emitter's front (0 otherwise, and for

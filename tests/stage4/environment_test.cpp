@@ -6,7 +6,9 @@
 #include "04-radiometry/environment_light.h"
 #include "common/display_transform.h"
 #include "common/spherical.h"
+#include "direct_estimators.h"
 #include "support/chi_square.h"
+#include "support/sample_mean.h"
 
 #include <gtest/gtest.h>
 
@@ -171,26 +173,21 @@ TEST(EnvironmentLight, ConstantEnvironmentIsUniformOnTheSphere) {
   EXPECT_NEAR(light.power(2.0f), kPi * 4.0f * 4.0f * kPi * luminance(e.scale), 1e-3f);
 }
 
+using testing::Estimate;
+using testing::estimator_name;
+using testing::kEstimators;
+
 // Direct lighting at one fixed point under an environment: `samples` estimates, mean and error.
-struct Estimate {
-  double mean, standard_error;
-};
 Estimate estimate(const LightingScene& scene, const Ray& ray, DirectEstimator estimator, int samples, int channel = 0) {
   DirectOptions options;
   options.estimator = estimator;
-  double sum = 0.0, sum2 = 0.0;
+  testing::SampleMean m;
   for (int k = 0; k < samples; ++k) {
     Rng rng(5, 0, std::uint64_t(k));
-    const double v = direct_radiance(scene, ray, options, rng)[channel];
-    sum += v;
-    sum2 += v * v;
+    m.add(direct_radiance(scene, ray, options, rng)[channel]);
   }
-  const double m = sum / samples;
-  return {m, std::sqrt(std::max(0.0, sum2 / samples - m * m) / samples)};
+  return m.estimate();
 }
-
-const DirectEstimator kEstimators[] = {DirectEstimator::uniform_hemisphere, DirectEstimator::cosine_hemisphere,
-                                       DirectEstimator::brdf, DirectEstimator::light};
 
 SceneDescription sphere_under(Environment environment, float albedo = 1.0f) {
   SceneDescription d;
@@ -220,7 +217,7 @@ TEST(EnvironmentFurnace, LambertianSphereReturnsItsAlbedoForEveryEstimator) {
         for (const DirectEstimator estimator : kEstimators) {
           const Estimate m = estimate(scene, ray, estimator, 20000);
           EXPECT_NEAR(m.mean, rho, 4.0 * m.standard_error + 1e-6)
-              << "estimator " << int(estimator) << (e.image ? " image" : " constant") << ", rho " << rho << ", at "
+              << "estimator " << estimator_name(estimator) << (e.image ? " image" : " constant") << ", rho " << rho << ", at "
               << target.x << "," << target.y << "," << target.z << ": +- " << m.standard_error;
           EXPECT_LT(m.standard_error, 0.02);
         }
@@ -259,8 +256,8 @@ TEST_F(BrightPatch, EveryEstimatorFindsTheClosedFormIrradiance) {
   ASSERT_TRUE(scene.closest_hit(ray, Interval::positive()).has_value()) << "the ray must hit the floor";
   for (const DirectEstimator estimator : kEstimators) {
     const Estimate m = estimate(scene, ray, estimator, 40000);
-    EXPECT_NEAR(m.mean, closed_form(), 4.0 * m.standard_error) << "estimator " << int(estimator) << ": +- " << m.standard_error;
-    EXPECT_LT(m.standard_error, 0.05 * closed_form()) << "estimator " << int(estimator);
+    EXPECT_NEAR(m.mean, closed_form(), 4.0 * m.standard_error) << "estimator " << estimator_name(estimator) << ": +- " << m.standard_error;
+    EXPECT_LT(m.standard_error, 0.05 * closed_form()) << "estimator " << estimator_name(estimator);
   }
 }
 

@@ -86,7 +86,7 @@ TEST(DiscreteDistribution, ChoosesInProportionToWeight) {
   EXPECT_EQ(d.sample(0.1f).index, 2);  // exactly at the boundary after the zero-weight item
 }
 
-using testing::Mean;
+using testing::Estimate;
 using testing::mean_of;
 using testing::projected_solid_angle_sample;
 
@@ -94,10 +94,10 @@ TEST(EmitterSampling, TriangleReproducesLambertsFormula) {
   const Vec3 x(0.1f, -0.2f, 0.0f), n = glm::normalize(Vec3(0.2f, 0.1f, 1.0f));
   // Facing down, towards x.
   const AreaEmitter e{TriangleEmitter{Vec3(-0.5f, 0, 1), Vec3(0.3f, 0.9f, 1.2f), Vec3(0.8f, -0.4f, 0.9f)}, Color(1.0f)};
-  const Mean m = mean_of(200000, 22, [&](Rng& rng) { return projected_solid_angle_sample(e, x, n, rng.uniform2()); });
+  const Estimate m = mean_of(200000, 22, [&](Rng& rng) { return projected_solid_angle_sample(e, x, n, rng.uniform2()); });
   const auto& t = std::get<TriangleEmitter>(e.geometry);
   const double exact = polygon_irradiance(x, n, std::vector<Vec3>{t.v0, t.v1, t.v2}, 1.0f);
-  EXPECT_NEAR(m.value, exact, 4.0 * m.standard_error);
+  EXPECT_NEAR(m.mean, exact, 4.0 * m.standard_error);
   EXPECT_LT(m.standard_error, 0.01 * exact);
 }
 
@@ -113,23 +113,23 @@ TEST(EmitterSampling, QuadLightIsTwoTrianglesChosenByArea) {
   const float a0 = scene.emitters()[0].area(), a1 = scene.emitters()[1].area();
   EXPECT_NEAR(scene.emitter_distribution().pmf(0), a0 / (a0 + a1), 1e-6);
   const Vec3 x(0.2f, 0.0f, 0.1f), n(0, 1, 0);
-  const Mean m = mean_of(400000, 23, [&](Rng& rng) {
+  const Estimate m = mean_of(400000, 23, [&](Rng& rng) {
     const auto choice = scene.emitter_distribution().sample(rng.uniform());
     const AreaEmitter& e = scene.emitters()[size_t(choice.index)];
     return 2.0 * projected_solid_angle_sample(e, x, n, rng.uniform2()) / choice.pmf;
   });
   const std::vector<Vec3> quad{{-1, 1, -1}, {2, 1, -1}, {0.5f, 1, 0.5f}, {-1, 1, 4}};
   const double exact = polygon_irradiance(x, n, quad, 2.0f);
-  EXPECT_NEAR(m.value, exact, 4.0 * m.standard_error);
+  EXPECT_NEAR(m.mean, exact, 4.0 * m.standard_error);
   EXPECT_LT(m.standard_error, 0.01 * exact);
 }
 
 TEST(EmitterSampling, DiskMatchesTheCoaxialFactor) {
   const AreaEmitter e{DiskEmitter{Vec3(0, 2, 0), Vec3(0, -1, 0), 0.5f}, Color(1.0f)};
   const Vec3 x(0.0f), n(0, 1, 0);
-  const Mean m = mean_of(200000, 24, [&](Rng& rng) { return projected_solid_angle_sample(e, x, n, rng.uniform2()); });
-  EXPECT_NEAR(m.value, kPi * testing::factor_to_coaxial_disk(0.5, 2.0), 4.0 * m.standard_error);
-  EXPECT_NEAR(m.value, 0.184800, 4.0 * m.standard_error);
+  const Estimate m = mean_of(200000, 24, [&](Rng& rng) { return projected_solid_angle_sample(e, x, n, rng.uniform2()); });
+  EXPECT_NEAR(m.mean, kPi * testing::factor_to_coaxial_disk(0.5, 2.0), 4.0 * m.standard_error);
+  EXPECT_NEAR(m.mean, 0.184800, 4.0 * m.standard_error);
 }
 
 TEST(EmitterSampling, SphereByConeAndByAreaMatchTheFactor) {
@@ -137,10 +137,10 @@ TEST(EmitterSampling, SphereByConeAndByAreaMatchTheFactor) {
   const Vec3 x(0.0f), n(std::sin(radians(30.0f)), std::cos(radians(30.0f)), 0.0f);
   for (const SphereSampling strategy : {SphereSampling::cone, SphereSampling::area}) {
     const AreaEmitter e{SphereEmitter{Vec3(0, 2, 0), 1.0f, strategy}, Color(1.0f)};
-    const Mean m = mean_of(200000, 25, [&](Rng& rng) { return projected_solid_angle_sample(e, x, n, rng.uniform2()); });
-    EXPECT_NEAR(m.value, kPi * testing::factor_to_sphere_on_normal(1.0, 2.0) * std::cos(radians(30.0f)),
+    const Estimate m = mean_of(200000, 25, [&](Rng& rng) { return projected_solid_angle_sample(e, x, n, rng.uniform2()); });
+    EXPECT_NEAR(m.mean, kPi * testing::factor_to_sphere_on_normal(1.0, 2.0) * std::cos(radians(30.0f)),
                 4.0 * m.standard_error);
-    EXPECT_NEAR(m.value, 0.680175, 4.0 * m.standard_error);
+    EXPECT_NEAR(m.mean, 0.680175, 4.0 * m.standard_error);
     // The cone wastes nothing: its only variance is the cosine's.
     if (strategy == SphereSampling::cone) {
       EXPECT_LT(m.standard_error, 0.001);
@@ -168,11 +168,11 @@ TEST(EmitterSampling, SolidAngleAndPdfAgree) {
       EXPECT_NEAR(e.pdf(x, s.point), s.pdf, 2e-3f * s.pdf);
     }
     if (exact > 0.0) {
-      const Mean m = mean_of(100000, 27, [&](Rng& r) {
+      const Estimate m = mean_of(100000, 27, [&](Rng& r) {
         const EmitterSample s = e.sample(x, r.uniform2());
         return e.radiance_towards(s.point, x) == Color(0.0f) ? 0.0 : 1.0 / s.pdf;
       });
-      EXPECT_NEAR(m.value, exact, 1e-4 * exact + 4.0 * m.standard_error);
+      EXPECT_NEAR(m.mean, exact, 1e-4 * exact + 4.0 * m.standard_error);
     }
   }
 }

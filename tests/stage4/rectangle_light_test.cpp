@@ -96,7 +96,7 @@ TEST(RectangleChiSquare, SolidAngleSamplingIsUniformOverTheSubtendedDirections) 
 }
 
 // E[cos(theta_x) / p] = the projected solid angle, which Lambert's formula gives exactly.
-testing::Mean projected_solid_angle(const RectangleEmitter& r, Vec3 x, Vec3 n, int samples, std::uint64_t seed) {
+testing::Estimate projected_solid_angle(const RectangleEmitter& r, Vec3 x, Vec3 n, int samples, std::uint64_t seed) {
   const AreaEmitter e{r, Color(1.0f)};
   return testing::mean_of(samples, seed, [&](Rng& rng) { return testing::projected_solid_angle_sample(e, x, n, rng.uniform2()); });
 }
@@ -117,8 +117,8 @@ TEST(RectangleLight, BothStrategiesReproduceLambertsFormulaNearAndFar) {
     for (const RectangleSampling strategy : {RectangleSampling::area, RectangleSampling::solid_angle}) {
       RectangleEmitter r = kNear;
       r.strategy = strategy;
-      const testing::Mean m = projected_solid_angle(r, c.x, c.n, 200000, 43);
-      EXPECT_NEAR(m.value, exact, 4.0 * m.standard_error + 1e-4 * exact) << c.where;
+      const testing::Estimate m = projected_solid_angle(r, c.x, c.n, 200000, 43);
+      EXPECT_NEAR(m.mean, exact, 4.0 * m.standard_error + 1e-4 * exact) << c.where;
       // Area sampling right under a large light is the case solid angle exists for.
       if (strategy == RectangleSampling::solid_angle || std::string(c.where) != "near") {
         EXPECT_LT(m.standard_error, 0.02 * exact) << c.where;
@@ -134,8 +134,8 @@ TEST(RectangleLight, SolidAngleSamplingRemovesTheVarianceNearTheLight) {
   const Vec3 x(0.4f, 0.23f, 0.1f), n(0, 1, 0);
   RectangleEmitter by_area = kNear;
   by_area.strategy = RectangleSampling::area;
-  const testing::Mean area = projected_solid_angle(by_area, x, n, 100000, 44);
-  const testing::Mean solid = projected_solid_angle(kNear, x, n, 100000, 44);
+  const testing::Estimate area = projected_solid_angle(by_area, x, n, 100000, 44);
+  const testing::Estimate solid = projected_solid_angle(kNear, x, n, 100000, 44);
   EXPECT_LT(solid.standard_error * 5.0, area.standard_error)
       << "area " << area.standard_error << ", solid angle " << solid.standard_error;
 }

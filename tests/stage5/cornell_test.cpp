@@ -6,6 +6,7 @@
 #include "common/image_io.h"
 #include "common/metrics.h"
 
+#include "support/sample_mean.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
@@ -42,29 +43,22 @@ const Region kRegions[] = {{"back wall", {36, 14, 46, 24}},
 
 double grey(DVec3 c) { return (c.x + c.y + c.z) / 3.0; }
 
-struct Estimate {
-  double mean, standard_error;
-};
+using testing::Estimate;
 
 // The mean over a region's pixels of `spp` independent paths each (grey, the mean of R, G, B).
 // The standard error comes from the spread of all the region's samples around their common mean,
 // which also counts the spread between pixels, so it is conservative.
 Estimate region_estimate(const Region& region, const PathOptions& options, int spp, std::uint64_t seed) {
   const Cornell& c = cornell();
-  double sum = 0.0, sum2 = 0.0;
-  long n = 0;
+  testing::SampleMean m;
   for (int y = region.rect.y0; y < region.rect.y1; ++y)
     for (int x = region.rect.x0; x < region.rect.x1; ++x)
       for (int k = 0; k < spp; ++k) {
         Rng rng(seed, std::uint64_t(y * kSize + x), std::uint64_t(k));
         const Ray ray = generate_camera_ray(c.camera, Vec2(float(x), float(y)) + rng.uniform2());
-        const double v = grey(DVec3(path_radiance(c.scene, ray, options, rng)));
-        sum += v;
-        sum2 += v * v;
-        ++n;
+        m.add(grey(DVec3(path_radiance(c.scene, ray, options, rng))));
       }
-  const double mean = sum / double(n);
-  return {mean, std::sqrt(std::max(0.0, sum2 / double(n) - mean * mean) / double(n))};
+  return m.estimate();
 }
 
 TEST(CornellBox, EveryIntegratorFindsTheReferenceOnEveryRegion) {

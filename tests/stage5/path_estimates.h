@@ -4,29 +4,23 @@
 
 #include "05-path-tracing/path_tracer.h"
 #include "common/scene.h"
+#include "support/sample_mean.h"
 
-#include <algorithm>
-#include <cmath>
 #include <string>
 
 namespace rt {
 
-struct Estimate {
-  double mean, standard_error;
-};
+using testing::Estimate;
 
 // `paths` independent paths along one ray: mean and standard error of one channel.
 inline Estimate estimate(const LightingScene& scene, const Ray& ray, const PathOptions& options, int paths,
                          std::uint64_t seed = 1, int channel = 0) {
-  double sum = 0.0, sum2 = 0.0;
+  testing::SampleMean m;
   for (int k = 0; k < paths; ++k) {
     Rng rng(seed, 0, std::uint64_t(k));
-    const double v = path_radiance(scene, ray, options, rng)[channel];
-    sum += v;
-    sum2 += v * v;
+    m.add(path_radiance(scene, ray, options, rng)[channel]);
   }
-  const double m = sum / paths;
-  return {m, std::sqrt(std::max(0.0, sum2 / paths - m * m) / paths)};
+  return m.estimate();
 }
 
 // A closed cube [-s, s]^3, every wall facing in, of albedo rho and emission Le: L = Le / (1 - rho)

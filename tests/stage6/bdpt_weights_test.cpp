@@ -7,6 +7,7 @@
 #include "06-light-transport/camera_importance.h"
 #include "06-light-transport/light_emission.h"
 
+#include "stage6/loaded_scene.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
@@ -14,20 +15,11 @@
 namespace rt {
 namespace {
 
-struct Scene {
-  explicit Scene(const char* file)
-      : description(load_scene(testing::source_path(file))), scene(description), camera(description.camera, 64, 48) {}
-  SceneDescription description;
-  LightingScene scene;
-  Camera camera;
-};
+using testing::LoadedScene;
 
-const Scene& cornell() {
-  static const Scene s("assets/scenes/cornell-box.json");
-  return s;
-}
-const Scene& caustic() {
-  static const Scene s("assets/scenes/caustic.json");
+const LoadedScene& cornell() { return testing::cornell_box<64, 48>(); }
+const LoadedScene& caustic() {
+  static const LoadedScene s("assets/scenes/caustic.json", 64, 48);
   return s;
 }
 
@@ -35,7 +27,7 @@ const Scene& caustic() {
 struct Subpaths {
   std::vector<PathVertex> camera, light;
 };
-Subpaths subpaths(const Scene& s, std::uint64_t k, int max_vertices = 6) {
+Subpaths subpaths(const LoadedScene& s, std::uint64_t k, int max_vertices = 6) {
   Rng rng(77, 0, k);
   Subpaths p;
   const Ray ray = generate_camera_ray(s.camera, Vec2(rng.uniform() * 64.0f, rng.uniform() * 48.0f));
@@ -72,7 +64,7 @@ TEST(AreaDensity, SolidAngleTimesCosineOverDistanceSquared) {
 }
 
 // What the walk stored against what the geometry says, for every vertex whose neighbours exist.
-void expect_walk_densities(const Scene& s, const std::vector<PathVertex>& path, const std::string& what) {
+void expect_walk_densities(const LoadedScene& s, const std::vector<PathVertex>& path, const std::string& what) {
   for (size_t i = 1; i < path.size(); ++i) {
     const PathVertex& before = path[i - 1];
     const float fwd = vertex_pdf(s.camera, before, i >= 2 ? &path[i - 2] : nullptr, path[i]);
@@ -87,7 +79,7 @@ void expect_walk_densities(const Scene& s, const std::vector<PathVertex>& path, 
 
 TEST(RandomWalk, StoresTheDensitiesOfBothDirections) {
   int long_walks = 0;
-  for (const Scene* s : {&cornell(), &caustic()})
+  for (const LoadedScene* s : {&cornell(), &caustic()})
     for (std::uint64_t k = 0; k < 200; ++k) {
       const Subpaths p = subpaths(*s, k);
       expect_walk_densities(*s, p.camera, "camera subpath " + std::to_string(k));
@@ -102,7 +94,7 @@ TEST(RandomWalk, ThroughputIsTheProductOfTheSamplingWeights) {
   // In the Cornell box every surface is Lambertian: a cosine-sampled bounce has weight = albedo, so
   // the camera subpath's beta at vertex i is the product of the albedos before it (and the light
   // subpath's the emitted flux over the choice times the same product).
-  const Scene& s = cornell();
+  const LoadedScene& s = cornell();
   size_t vertices = 0;
   for (std::uint64_t k = 0; k < 50; ++k) {
     const Subpaths p = subpaths(s, k);
@@ -152,7 +144,7 @@ struct FullPath {
   std::vector<double> from_camera, from_light;
 };
 
-FullPath join(const Scene& s, const Subpaths& p, int sl, int tc, const PathVertex* sampled_light) {
+FullPath join(const LoadedScene& s, const Subpaths& p, int sl, int tc, const PathVertex* sampled_light) {
   FullPath f;
   for (int i = 0; i < tc; ++i) f.x.push_back(&p.camera[size_t(i)]);
   for (int i = sl - 1; i >= 0; --i) f.x.push_back(i == 0 && sampled_light ? sampled_light : &p.light[size_t(i)]);
@@ -191,7 +183,7 @@ float reference_weight(const FullPath& f, int s) {
 
 TEST(MisWeights, EveryStrategyOfAPathSumsToOneAndTheRendererAgrees) {
   int paths = 0, with_delta = 0;
-  for (const Scene* s : {&cornell(), &caustic()})
+  for (const LoadedScene* s : {&cornell(), &caustic()})
     for (std::uint64_t k = 0; k < 300; ++k) {
       const Subpaths p = subpaths(*s, k);
       if (p.light.empty()) continue;
@@ -224,7 +216,7 @@ TEST(MisWeights, EveryStrategyOfAPathSumsToOneAndTheRendererAgrees) {
 
 TEST(MisWeights, ThePowerHeuristicsClosedFormOnDiffusePaths) {
   // Without delta vertices every strategy exists and p_s is the plain product of densities.
-  const Scene& s = cornell();
+  const LoadedScene& s = cornell();
   int checked = 0;
   for (std::uint64_t k = 0; k < 200; ++k) {
     const Subpaths p = subpaths(s, k, 4);

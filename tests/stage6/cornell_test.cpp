@@ -3,6 +3,7 @@
 // region by region, and the image the same bit for bit for any thread count.
 #include "common/image_io.h"
 
+#include "stage6/loaded_scene.h"
 #include "stage6/transport_estimates.h"
 #include "support/test_support.h"
 
@@ -11,18 +12,10 @@
 namespace rt {
 namespace {
 
-constexpr int kSize = 64;
-
-struct Cornell {
-  SceneDescription description = load_scene(testing::source_path("assets/scenes/cornell-box.json"));
-  LightingScene scene{description};
-  Camera camera{description.camera, kSize, kSize};
-  Image reference = downsample(read_pfm(testing::source_path("assets/references/cornell-box-256.pfm")), 256 / kSize);
-};
-
-const Cornell& cornell() {
-  static const Cornell c;
-  return c;
+// The 256 x 256 reference averaged down to the tests' 64 x 64 film.
+const Image& cornell_reference() {
+  static const Image reference = downsample(read_pfm(testing::source_path("assets/references/cornell-box-256.pfm")), 4);
+  return reference;
 }
 
 // The regions of stage 5's Cornell test, each inside one surface.
@@ -32,11 +25,11 @@ const char* const kRegionNames[] = {"back wall", "floor between the blocks", "re
 // Every region's mean within 3 standard errors (plus `bias_allowance` of the reference, for a
 // biased method) of the reference's.
 void expect_agreement(const TransportOptions& options, int spp, int runs, double bias_allowance) {
-  const Cornell& c = cornell();
+  const testing::LoadedScene& c = testing::cornell_box<64, 64>();
   const std::vector<RegionEstimate> estimates = region_estimates(
       [&](std::uint64_t seed) { return render_method(c.scene, c.camera, options, spp, seed); }, kRegions, runs);
   for (size_t r = 0; r < std::size(kRegions); ++r) {
-    const double expected = grey(mean_over(c.reference, kRegions[r]));
+    const double expected = grey(mean_over(cornell_reference(), kRegions[r]));
     EXPECT_NEAR(estimates[r].mean, expected, 3.0 * estimates[r].standard_error + bias_allowance * expected)
         << method_name(options.method) << ", " << kRegionNames[r] << ": standard error "
         << estimates[r].standard_error;

@@ -3,6 +3,7 @@
 // region by region, with path tracing's image of exactly k edges.
 #include "05-path-tracing/path_tracer.h"
 
+#include "stage6/loaded_scene.h"
 #include "stage6/transport_estimates.h"
 #include "support/test_support.h"
 
@@ -11,18 +12,8 @@
 namespace rt {
 namespace {
 
-constexpr int kSize = 16;
+constexpr int kFilm = 16;  // the film's side in pixels
 const PixelRect kQuadrants[] = {{0, 0, 8, 8}, {8, 0, 16, 8}, {0, 8, 8, 16}, {8, 8, 16, 16}};
-
-struct Cornell {
-  SceneDescription description = load_scene(testing::source_path("assets/scenes/cornell-box.json"));
-  LightingScene scene{description};
-  Camera camera{description.camera, kSize, kSize};
-};
-const Cornell& cornell() {
-  static const Cornell c;
-  return c;
-}
 
 // Per quadrant, the mean and standard error of `spp` independent samples per pixel, sample(x, y,
 // i) giving sample i of pixel (x, y). Over the region's pixels: the mean of their means, whose
@@ -31,18 +22,11 @@ template <class SampleFn>
 std::vector<RegionEstimate> quadrant_estimates(int spp, SampleFn&& sample) {
   std::vector<RegionEstimate> out;
   for (const PixelRect& region : kQuadrants) {
-    double sum = 0.0, sum2 = 0.0;
-    long n = 0;
+    testing::SampleMean m;
     for (int y = region.y0; y < region.y1; ++y)
       for (int x = region.x0; x < region.x1; ++x)
-        for (int i = 0; i < spp; ++i) {
-          const double v = sample(x, y, i);
-          sum += v;
-          sum2 += v * v;
-          ++n;
-        }
-    const double mean = sum / double(n);
-    out.push_back({mean, std::sqrt(std::max(0.0, sum2 / double(n) - mean * mean) / double(n))});
+        for (int i = 0; i < spp; ++i) m.add(sample(x, y, i));
+    out.push_back(m.estimate());
   }
   return out;
 }
@@ -51,13 +35,13 @@ std::vector<RegionEstimate> quadrant_estimates(int spp, SampleFn&& sample) {
 // sampling, no roulette) run to k - 1 bounces, minus the same path run to k - 2. The same numbers
 // make the same path, so their difference is the path's k-edge term alone.
 std::vector<RegionEstimate> path_traced_length(int k, int spp) {
-  const Cornell& c = cornell();
+  const testing::LoadedScene& c = testing::cornell_box<kFilm, kFilm>();
   PathOptions longer, shorter;
   longer.integrator = shorter.integrator = PathIntegrator::naive;
   longer.max_depth = k - 1;
   shorter.max_depth = k - 2;
   return quadrant_estimates(spp, [&](int x, int y, int i) {
-    const std::uint64_t pixel = std::uint64_t(y * kSize + x);
+    const std::uint64_t pixel = std::uint64_t(y * kFilm + x);
     Rng a(9, pixel, std::uint64_t(i)), b(9, pixel, std::uint64_t(i));
     const Vec2 film = Vec2(float(x), float(y)) + a.uniform2();
     b.uniform2();
@@ -69,7 +53,7 @@ std::vector<RegionEstimate> path_traced_length(int k, int spp) {
 }
 
 void expect_strategies_of_length(int k, int pt_spp, int spp, int runs) {
-  const Cornell& c = cornell();
+  const testing::LoadedScene& c = testing::cornell_box<kFilm, kFilm>();
   const std::vector<RegionEstimate> expected = path_traced_length(k, pt_spp);
   double lit = 0.0;
   for (const RegionEstimate& e : expected) lit += e.mean;
@@ -95,10 +79,10 @@ TEST(BdptStrategies, EachAloneFindsThePathsOfLengthThree) { expect_strategies_of
 TEST(BdptStrategies, AllTogetherWeightedEqualTheirSum) {
   // MIS keeps the expectation: the weighted render of every strategy agrees with path tracing's
   // image of every length (stage 5's MIS integrator), on the quadrants.
-  const Cornell& c = cornell();
+  const testing::LoadedScene& c = testing::cornell_box<kFilm, kFilm>();
   const PathOptions mis;
   const std::vector<RegionEstimate> expected = quadrant_estimates(1024, [&](int x, int y, int i) {
-    Rng rng(10, std::uint64_t(y * kSize + x), std::uint64_t(i));
+    Rng rng(10, std::uint64_t(y * kFilm + x), std::uint64_t(i));
     const Ray ray = generate_camera_ray(c.camera, Vec2(float(x), float(y)) + rng.uniform2());
     return grey(DVec3(path_radiance(c.scene, ray, mis, rng)));
   });

@@ -5,17 +5,15 @@
 
 #include "06-light-transport/transport_render.h"
 #include "common/metrics.h"
+#include "support/sample_mean.h"
 
-#include <cmath>
 #include <functional>
 #include <span>
 #include <vector>
 
 namespace rt {
 
-struct RegionEstimate {
-  double mean = 0.0, standard_error = 0.0;
-};
+using RegionEstimate = testing::Estimate;
 
 inline double grey(DVec3 c) { return (c.x + c.y + c.z) / 3.0; }
 
@@ -23,21 +21,13 @@ inline double grey(DVec3 c) { return (c.x + c.y + c.z) / 3.0; }
 // standard error of that mean (sample standard deviation / sqrt(runs)).
 inline std::vector<RegionEstimate> region_estimates(const std::function<Image(std::uint64_t)>& render,
                                                     std::span<const PixelRect> regions, int runs) {
-  std::vector<double> sum(regions.size(), 0.0), sum2(regions.size(), 0.0);
+  std::vector<testing::SampleMean> means(regions.size());
   for (int run = 1; run <= runs; ++run) {
     const Image image = render(std::uint64_t(run));
-    for (size_t r = 0; r < regions.size(); ++r) {
-      const double v = grey(mean_over(image, regions[r]));
-      sum[r] += v;
-      sum2[r] += v * v;
-    }
+    for (size_t r = 0; r < regions.size(); ++r) means[r].add(grey(mean_over(image, regions[r])));
   }
   std::vector<RegionEstimate> out;
-  for (size_t r = 0; r < regions.size(); ++r) {
-    const double mean = sum[r] / runs;
-    const double variance = std::max(0.0, (sum2[r] - runs * mean * mean) / (runs - 1));
-    out.push_back({mean, std::sqrt(variance / runs)});
-  }
+  for (const testing::SampleMean& m : means) out.push_back(m.estimate());
   return out;
 }
 

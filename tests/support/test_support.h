@@ -1,10 +1,12 @@
-// Helpers shared by the test suites: paths into the source tree, scratch folders, running a program.
+// Helpers shared by the test suites: paths into the source tree, scratch folders, running a program,
+// bitwise float equality.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -40,6 +42,10 @@ class ScratchDir {
  private:
   std::filesystem::path path_;
 };
+
+// Equal bit for bit (so +0 and -0 differ and a NaN equals itself), where two computations must
+// round identically.
+inline bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // What `f` throws, as its message; "" when it throws nothing.
 inline std::string error_message(const std::function<void()>& f) {
