@@ -10,7 +10,9 @@ Each task region must read
     // END TASK
 
 with <id> of the form stageN.topic.task, N matching the stage folder, ids unique across the tree,
-no nesting, and every id listed in that stage's handout docs/stageN.md (and every id the handout
+no nesting, only in .cpp files (a header is compiled into the test programs, so a task there
+would let a submission's code rewrite the tests, and each edit would rebuild every file that
+includes it; docs/instructors.md), and every id listed in that stage's handout docs/stageN.md (and every id the handout
 lists present in the code). Exits 1 with one line per problem.
 """
 import sys
@@ -25,6 +27,8 @@ def main(root):
         for path in task_regions.source_files(folder):
             for region in task_regions.parse(path, problems):
                 where = f"{path}:{region.begin + 1}"
+                if path.suffix != ".cpp":
+                    problems.append(f"{where}: task {region.task_id} is in a header; tasks live in .cpp files")
                 if region.stage != stage:
                     problems.append(f"{where}: task {region.task_id} lives in the folder of stage {stage}")
                 if region.task_id in seen:
@@ -37,6 +41,8 @@ def main(root):
             problems.append(f"{handout}: does not list task {task_id}")
         for task_id in sorted(listed - found):
             problems.append(f"{handout}: lists task {task_id}, which no code marks")
+        for task_id in sorted(listed - set(task_regions.handout_tasks(root, stage))):
+            problems.append(f"{handout}: the row of task {task_id} is not a Tasks row (| id | file | what | tests |)")
     for problem in problems:
         print(problem)
     print(f"{len(seen)} tasks checked, {len(problems)} problems")

@@ -13,9 +13,10 @@ PLACEHOLDER = re.compile(r"^\s*// PLACEHOLDER\s*$")
 END = re.compile(r"^\s*// END TASK\s*$")
 TASK_ID = re.compile(r"^stage(\d+)\.[a-z0-9_]+\.[a-z0-9_]+$")
 # A Tasks table row: | `task id` | file | what | tests | and, optionally, the tasks its tests also
-# reach (tools/task_prerequisites.py). A cell may hold escaped bars (\|).
+# reach (tools/task_prerequisites.py). The id's cell may say more after the id ("(optional:
+# speed)"); a cell may hold escaped bars (\|).
 _CELL = r"((?:[^|\\]|\\.)*)"
-HANDOUT_ROW = re.compile(r"^\|\s*`(stage\d+\.[a-z0-9_]+\.[a-z0-9_]+)`\s*\|" + rf"{_CELL}\|{_CELL}\|{_CELL}\|(?:{_CELL}\|)?\s*$")
+HANDOUT_ROW = re.compile(r"^\|\s*`(stage\d+\.[a-z0-9_]+\.[a-z0-9_]+)`[^|`]*\|" + rf"{_CELL}\|{_CELL}\|{_CELL}\|(?:{_CELL}\|)?\s*$")
 HANDOUT_ID = re.compile(r"`(stage\d+\.[a-z0-9_]+\.[a-z0-9_]+)`")
 
 

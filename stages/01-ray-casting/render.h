@@ -19,46 +19,62 @@
 #include "common/random.h"
 #include "common/sample_sums.h"
 #include "common/scene.h"
-#include "common/task.h"
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
+#include <type_traits>
 
 namespace rt {
 
+// Where a pixel's samples take their numbers and their radiance: start_sample gives sample
+// `sample_index`'s sampler, made from (seed, pixel index, sample index), and radiance(ray) the
+// radiance arriving along a ray, drawing any further numbers from that same sampler. An interface,
+// so that the task below is an ordinary function whatever sampler and integrator a stage brings
+// (two virtual calls a sample, against a ray's worth of work).
+class PixelSampleSource {
+ public:
+  virtual Sampler& start_sample(std::uint64_t seed, std::uint64_t pixel_index, std::uint64_t sample_index) = 0;
+  virtual Color radiance(const Ray& ray) = 0;
+
+ protected:
+  ~PixelSampleSource() = default;
+};
+
 // Task stage1.render.pixel_samples: adds samples [begin, end) of pixel (x, y) to `sum` and returns
 // how many it added. Sample k is the camera ray through (x, y) + the film offset of `filter`'s
-// sample (settings.filter's) for (u, v), the first two numbers of SamplerType(seed, pixel index,
-// first_sample + k), or through the pixel's centre for settings.pixel_center_only; its radiance
-// times the sample's weight is added. A camera with an aperture takes its lens point from the next
-// two numbers (generate_lens_ray); a pinhole draws none, so pinhole renders are what they always
-// were. The same numbers whichever run, thread or pass takes the sample. `radiance(ray, rng)` returns the radiance arriving along the ray, drawing
-// any further numbers from the same `rng`. A stop request (common/interrupt.h) ends the loop
-// between two samples: the pixel keeps the samples it finished.
+// sample (settings.filter's) for (u, v), the first two numbers of sample first_sample + k's
+// sampler (samples.start_sample with settings.seed and the pixel's index y * width + x), or
+// through the pixel's centre for settings.pixel_center_only; its radiance (samples.radiance) times
+// the sample's weight is added. A camera with an aperture takes its lens point from the next two
+// numbers (generate_lens_ray); a pinhole draws none, so pinhole renders are what they always were.
+// The same numbers whichever run, thread or pass takes the sample. A stop request
+// (common/interrupt.h) ends the loop between two samples: the pixel keeps the samples it finished.
+int add_pixel_samples(const Camera& camera, const PixelFilter& filter, const RenderSettings& settings, int x, int y,
+                      int begin, int end, PixelSampleSource& samples, Color& sum);
+
+// The source of a SamplerType (Rng unless a later stage passes another) and a radiance function
+// `radiance(ray, sampler)`.
+template <class SamplerType, class RadianceFn>
+class PixelSamplesOf final : public PixelSampleSource {
+ public:
+  explicit PixelSamplesOf(RadianceFn& radiance) : radiance_(radiance) {}
+  Sampler& start_sample(std::uint64_t seed, std::uint64_t pixel_index, std::uint64_t sample_index) override {
+    return sampler_.emplace(seed, pixel_index, sample_index);
+  }
+  Color radiance(const Ray& ray) override { return radiance_(ray, *sampler_); }
+
+ private:
+  RadianceFn& radiance_;
+  std::optional<SamplerType> sampler_;
+};
+
+// add_pixel_samples with the samples of SamplerType and `radiance(ray, sampler)`.
 template <class SamplerType, class RadianceFn>
 int add_pixel_samples(const Camera& camera, const PixelFilter& filter, const RenderSettings& settings, int x, int y,
                       int begin, int end, RadianceFn&& radiance, Color& sum) {
-  const std::uint64_t pixel_index = std::uint64_t(y) * std::uint64_t(camera.width) + std::uint64_t(x);
-  int added = 0;
-  // BEGIN TASK stage1.render.pixel_samples
-  for (int k = begin; k < end && !interrupt_requested(); ++k, ++added) {
-    SamplerType rng(settings.seed, pixel_index, std::uint64_t(settings.first_sample + k));
-    const FilterSample s = settings.pixel_center_only ? FilterSample{Vec2(0.5f), 1.0f} : filter.sample(rng.uniform2());
-    const Vec2 film_point = Vec2(float(x), float(y)) + s.film_offset;
-    const Ray ray = camera.aperture_radius > 0.0f ? generate_lens_ray(camera, film_point, rng.uniform2())
-                                                  : generate_camera_ray(camera, film_point);
-    sum += s.weight * radiance(ray, rng);
-  }
-  // PLACEHOLDER
-  // report_unfinished_task("stage1.render.pixel_samples");
-  // if (begin == 0) {  // one ray through the pixel's centre, in the first pass only
-  //   SamplerType rng(settings.seed, pixel_index, 0);
-  //   sum = radiance(generate_camera_ray(camera, Vec2(x + 0.5f, y + 0.5f)), rng);
-  //   added = 1;
-  // }
-  // (void)end, (void)filter;
-  // END TASK
-  return added;
+  PixelSamplesOf<SamplerType, std::remove_reference_t<RadianceFn>> samples(radiance);
+  return add_pixel_samples(camera, filter, settings, x, y, begin, end, samples, sum);
 }
 
 // Samples per pass over the image (render_samples): enough that a pass holds at least 2^16

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "03-acceleration/aabb.h"
+#include "common/function_ref.h"
 
 #include <cstdint>
 #include <cstdlib>
@@ -145,15 +146,11 @@ Bvh build_bvh(std::span<const Aabb> primitive_bounds, const BvhBuildOptions& opt
 // `hit_primitive(slot, range)` returns the hit distance, within `range`, of the primitive in leaf
 // slot `slot` (the primitive bvh.order[slot]; slots let a caller keep its primitive data in leaf
 // order, next to each other in memory). Returns the nearest (t, slot).
-template <class HitPrimitive>
-std::optional<std::pair<float, std::uint32_t>> bvh_closest_hit(const Bvh& bvh, const Ray& ray, Interval range,
-                                                               HitPrimitive&& hit_primitive);
+std::optional<std::pair<float, std::uint32_t>> bvh_closest_hit(
+    const Bvh& bvh, const Ray& ray, Interval range, FunctionRef<std::optional<float>(std::uint32_t, Interval)> hit_primitive);
 
 // Task stage3.bvh.any_hit. The same walk for shadow rays, stopping at the first primitive hit in
 // range: no ordering, no shrinking, no record. `hits_primitive(index, range)` returns a bool.
-template <class HitsPrimitive>
-bool bvh_any_hit(const Bvh& bvh, const Ray& ray, Interval range, HitsPrimitive&& hits_primitive);
+bool bvh_any_hit(const Bvh& bvh, const Ray& ray, Interval range, FunctionRef<bool(std::uint32_t, Interval)> hits_primitive);
 
 }  // namespace rt
-
-#include "03-acceleration/bvh_traversal.h"

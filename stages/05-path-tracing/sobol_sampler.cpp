@@ -1,5 +1,7 @@
 #include "05-path-tracing/sobol_sampler.h"
 
+#include "common/task.h"
+
 namespace rt {
 
 const SobolSampler::Tables& SobolSampler::dimension1_tables() {
@@ -15,6 +17,35 @@ const SobolSampler::Tables& SobolSampler::dimension1_tables() {
     return t;
   }();
   return tables;
+}
+
+std::uint32_t SobolSampler::laine_karras(std::uint32_t x, std::uint32_t seed) {
+  // BEGIN TASK stage5.sampler.owen_scramble
+  // Laine and Karras's hash with Burley's constants (JCGT 9(4), 2020, listing 2): each
+  // multiplication by an even constant only carries bits upwards, so bit k ends up depending on
+  // bits 0..k and the seed: a nested uniform scramble in reversed-bit order.
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+  // PLACEHOLDER
+  // report_unfinished_task("stage5.sampler.owen_scramble");
+  // return x ^ seed;  // a random digital shift: still unbiased, less well stratified
+  // END TASK
+}
+
+Vec2 SobolSampler::uniform2() {
+  const std::uint32_t call = call_++;
+  const std::uint32_t i = shuffled_index(call);
+  return Vec2(to_unit(reverse_bits(laine_karras(i, hash(call, 1)))),
+              to_unit(reverse_bits(laine_karras(reversed_sobol_dimension1(i), hash(call, 2)))));
+}
+
+float SobolSampler::uniform() {
+  const std::uint32_t call = call_++;
+  return to_unit(reverse_bits(laine_karras(shuffled_index(call), hash(call, 1))));
 }
 
 }  // namespace rt

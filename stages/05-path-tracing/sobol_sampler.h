@@ -16,7 +16,6 @@
 
 #include "common/math.h"
 #include "common/random.h"
-#include "common/task.h"
 
 #include <array>
 #include <cstdint>
@@ -32,16 +31,9 @@ class SobolSampler final : public Sampler {
   // Both coordinates are scramble(sobol_dimension(i), seed) = reverse(LK(reverse(sobol(i)))),
   // computed without reversing twice: sobol_dimension0 is itself a reversal, and dimension 1 is
   // tabulated with its bits already reversed.
-  Vec2 uniform2() override {
-    const std::uint32_t call = call_++;
-    const std::uint32_t i = shuffled_index(call);
-    return Vec2(to_unit(reverse_bits(laine_karras(i, hash(call, 1)))),
-                to_unit(reverse_bits(laine_karras(reversed_sobol_dimension1(i), hash(call, 2)))));
-  }
-  float uniform() override {
-    const std::uint32_t call = call_++;
-    return to_unit(reverse_bits(laine_karras(shuffled_index(call), hash(call, 1))));
-  }
+  // Defined in sobol_sampler.cpp, beside laine_karras, so that each compiles its calls to it in.
+  Vec2 uniform2() override;
+  float uniform() override;
 
   // Sobol's first dimension is the van der Corput sequence in base 2: the bits of i reversed.
   static std::uint32_t sobol_dimension0(std::uint32_t i) { return reverse_bits(i); }
@@ -60,7 +52,6 @@ class SobolSampler final : public Sampler {
   static std::uint32_t scramble(std::uint32_t x, std::uint32_t seed) {
     return reverse_bits(laine_karras(reverse_bits(x), seed));
   }
-  // Defined at the end of this header, so that uniform2() compiles its three calls in.
   static std::uint32_t laine_karras(std::uint32_t x, std::uint32_t seed);
 
   // The byte order reversed in one instruction (bswap), then the bits within each byte: nibbles,
@@ -99,22 +90,5 @@ class SobolSampler final : public Sampler {
   std::uint32_t reversed_index_;
   std::uint32_t call_ = 0;
 };
-
-inline std::uint32_t SobolSampler::laine_karras(std::uint32_t x, std::uint32_t seed) {
-  // BEGIN TASK stage5.sampler.owen_scramble
-  // Laine and Karras's hash with Burley's constants (JCGT 9(4), 2020, listing 2): each
-  // multiplication by an even constant only carries bits upwards, so bit k ends up depending on
-  // bits 0..k and the seed: a nested uniform scramble in reversed-bit order.
-  x += seed;
-  x ^= x * 0x6c50b47cu;
-  x ^= x * 0xb82f1e52u;
-  x ^= x * 0xc7afe638u;
-  x ^= x * 0x8d22f6e6u;
-  return x;
-  // PLACEHOLDER
-  // report_unfinished_task("stage5.sampler.owen_scramble");
-  // return x ^ seed;  // a random digital shift: still unbiased, less well stratified
-  // END TASK
-}
 
 }  // namespace rt

@@ -46,7 +46,7 @@ PLANTED_BUGS = [
      "old": "  const float b = 2.0f * glm::dot(f, ray.direction);",
      "new": "  const float b = -2.0f * glm::dot(f, ray.direction);",
      "covered_by": ["Sphere/BothSphereForms.*/textbook", "HiddenSphere.*"]},
-    {"task": "stage3.bvh.closest_hit", "file": "stages/03-acceleration/bvh_traversal.h",
+    {"task": "stage3.bvh.closest_hit", "file": "stages/03-acceleration/bvh_traversal.cpp",
      "old": "        stack[stack_size++] = first_is_nearer ? Entry{second, *t_second} : Entry{first, *t_first};\n",
      "new": "",
      # Builders.* as the handout says: the 4-wide trees have their own traversal, but their

@@ -173,6 +173,7 @@ class FileSelection(unittest.TestCase):
         self.assertIn("stages/01-ray-casting/sphere_intersection.cpp", editable)
         self.assertNotIn("CMakeLists.txt", editable)
         self.assertNotIn("stages/01-ray-casting/main.cpp", editable, "no task region in it")
+        self.assertEqual([f for f in editable if not f.endswith(".cpp")], [], "a header is never taken")
         with Folder() as d:
             sphere = "stages/01-ray-casting/sphere_intersection.cpp"
             plane = "stages/01-ray-casting/plane_intersection.cpp"
@@ -193,6 +194,22 @@ class FileSelection(unittest.TestCase):
             self.assertIn(f"{plane}: refused (a FIFO)", notes)
             self.assertIn("stages/02-whitted/optics.cpp: not in the submission", notes)
             self.assertEqual([(f.file, f.text) for f in taken.flags], [(camera, "void leave() { _exit(0); }")])
+
+    def test_a_task_in_a_header_is_refused_by_the_marker_check(self):
+        # Test sources include headers, so a task in one would let a submission rewrite the tests.
+        with Folder() as d:
+            (d / "stages" / "01-ray-casting").mkdir(parents=True)
+            (d / "docs").mkdir()
+            region = "  // BEGIN TASK stage1.demo.task\n  return 1;\n  // PLACEHOLDER\n  // return 0;\n  // END TASK\n"
+            (d / "stages" / "01-ray-casting" / "demo.h").write_text("inline int f() {\n" + region + "}\n")
+            (d / "docs" / "stage1.md").write_text("| `stage1.demo.task` | `demo.h` | a demo | `Demo.*` | none |\n")
+            check = [sys.executable, str(ROOT / "tools" / "check_markers.py"), str(d)]
+            result = subprocess.run(check, capture_output=True, text=True)
+            self.assertEqual(result.returncode, 1, result.stdout)
+            self.assertIn("task stage1.demo.task is in a header; tasks live in .cpp files", result.stdout)
+            (d / "stages" / "01-ray-casting" / "demo.h").rename(d / "stages" / "01-ray-casting" / "demo.cpp")
+            result = subprocess.run(check, capture_output=True, text=True)
+            self.assertEqual(result.returncode, 0, result.stdout)
 
     def test_the_graded_tree_has_the_instructors_build_files(self):
         with Folder() as d:
