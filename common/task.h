@@ -6,7 +6,9 @@
 namespace rt {
 
 // Prints "TODO: task <id> is not implemented yet" to stderr, once per task id per process;
-// thread-safe. Returns true the first time it is called for an id.
+// thread-safe. Returns true the first time it is called for an id. The id must stay valid for the
+// whole run, as a string literal does (a placeholder writes it so): its address is remembered, so
+// that later calls cost one lookup (common/task.cpp).
 bool report_unfinished_task(const char* task_id);
 
 }  // namespace rt
