@@ -1,12 +1,11 @@
 #pragma once
 // What the BVH builder (bvh.cpp) and its three split tasks (bvh_split.cpp) share: the primitives as
-// the build sees them, their extent, and the contract of each split. Private to this stage: the
+// the build sees them, their extent, and the splits' declarations. Private to this stage: the
 // rest of the framework sees build_bvh (bvh.h) alone.
 
 #include "03-acceleration/bvh.h"
 #include "common/float4.h"
 
-#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -76,27 +75,6 @@ struct Split {
   Iterator at;
   Extent left, right;
 };
-
-// std::partition that measures both sides on the way: each primitive is read once, where measuring
-// the two children in a pass of their own would read them all again (a third of the SAH build's
-// passes over the primitives).
-template <class Predicate>
-Split partition_measured(Iterator begin, Iterator end, Predicate goes_left) {
-  Split split{};
-  Iterator i = begin, j = end;
-  while (true) {
-    while (i != j && goes_left(*i)) split.left.add(*i++);
-    while (i != j && !goes_left(*(j - 1))) split.right.add(*--j);
-    if (i == j) break;
-    // *i belongs right and *(j - 1) left: swap them.
-    --j;
-    std::iter_swap(i, j);
-    split.left.add(*i++);
-    split.right.add(*j);
-  }
-  split.at = i;
-  return split;
-}
 
 // The three splits, each a task stated where bvh_split.cpp defines it. The builder calls them on a
 // node of at least two primitives whose centroids are not all equal along `axis` (it halves those

@@ -4,6 +4,7 @@
 #include "03-acceleration/bvh_build.h"
 #include "common/task.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 
@@ -31,6 +32,27 @@ struct SahBins {
     return n;
   }
 };
+
+// std::partition that measures both sides on the way: each primitive is read once, where measuring
+// the two children in a pass of their own would read them all again (a third of the SAH build's
+// passes over the primitives).
+template <class Predicate>
+Split partition_measured(Iterator begin, Iterator end, Predicate goes_left) {
+  Split split{};
+  Iterator i = begin, j = end;
+  while (true) {
+    while (i != j && goes_left(*i)) split.left.add(*i++);
+    while (i != j && !goes_left(*(j - 1))) split.right.add(*--j);
+    if (i == j) break;
+    // *i belongs right and *(j - 1) left: swap them.
+    --j;
+    std::iter_swap(i, j);
+    split.left.add(*i++);
+    split.right.add(*j);
+  }
+  split.at = i;
+  return split;
+}
 
 }  // namespace
 
