@@ -37,10 +37,9 @@ RenderSettings CommonOptions::settings_for(const SceneDescription& description) 
     s.spp = range.count;
   }
   if (crop) s.crop = parse_crop(*crop, s.width, s.height);
-  std::vector<std::string> inputs = {scene};
-  for (const Shape& shape : description.shapes)
-    if (const Mesh* mesh = std::get_if<Mesh>(&shape.geometry)) inputs.push_back(mesh->file);
-  require_outputs_spare_inputs(out, inputs);
+  std::vector<std::string> inputs = files_read_by(description);
+  inputs.push_back(scene);
+  require_outputs_spare_inputs(outputs_of(out, more_outputs), inputs);
   const MemoryLimit limit = memory_limit();
   check_image_fits(out, s.window().width(), s.window().height(), limit);
   check_scene_fits(scene, triangle_count(description), s.window().area() * kBytesPerPixel, limit);
@@ -52,11 +51,29 @@ std::vector<std::string> output_files(const std::string& out) {
   return {out, batch_sum_path(out).string(), batch_count_path(out).string()};
 }
 
-void require_outputs_spare_inputs(const std::string& out, const std::vector<std::string>& inputs) {
-  for (const std::string& output : output_files(out))
+std::vector<NamedOutput> outputs_of(const std::string& out, const std::vector<NamedOutput>& more) {
+  std::vector<NamedOutput> outputs;
+  for (const std::string& file : output_files(out)) outputs.push_back({"--out", file});
+  outputs.insert(outputs.end(), more.begin(), more.end());
+  return outputs;
+}
+
+void check_outputs(const std::vector<NamedOutput>& outputs) {
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    check_output_writable(outputs[i].file);
+    for (size_t j = 0; j < i; ++j)
+      if (same_file(outputs[i].file, outputs[j].file))
+        throw UsageError(outputs[i].flag + " " + outputs[i].file + " is the file " + outputs[j].flag +
+                         " writes too: one would be lost (give each output its own name)");
+  }
+}
+
+void require_outputs_spare_inputs(const std::vector<NamedOutput>& outputs, const std::vector<std::string>& inputs) {
+  for (const NamedOutput& output : outputs)
     for (const std::string& input : inputs)
-      if (same_file(output, input))
-        throw UsageError("--out " + out + " would overwrite the input " + input + " (give another output name)");
+      if (same_file(output.file, input))
+        throw UsageError(output.flag + " " + output.file + " would overwrite the input " + input +
+                         " (give another output name)");
 }
 
 namespace {
@@ -178,6 +195,9 @@ CLI::Validator finite_range(double lo, double hi) {
   return CLI::Validator(
       [lo, hi](std::string& text) {
         double value = 0.0;
+        // Decimal notation only: std::stod also reads "0x10" (16), "inf" and "nan".
+        if (text.empty() || text.find_first_not_of("0123456789+-.eE") != std::string::npos)
+          return text + ": not a decimal number";
         try {
           size_t used = 0;
           value = std::stod(text, &used);
@@ -247,7 +267,20 @@ void StageFlags::add(const std::string& name, std::optional<float>& value, const
   add_checked(app_, name, value, help, rule);
 }
 void StageFlags::add(const std::string& name, std::string& value, const std::string& help) {
-  app_.add_option(name, value, help);
+  app_.add_option(name, value, help)
+      ->check(CLI::Validator([](const std::string& t) { return t.empty() ? "must not be empty" : ""; }, "TEXT"));
+}
+
+void StageFlags::add_output(const std::string& name, std::string& value, const std::string& help) {
+  add(name, value, help);
+  outputs_.push_back({name, &value});
+}
+
+std::vector<NamedOutput> StageFlags::outputs() const {
+  std::vector<NamedOutput> given;
+  for (const auto& [name, value] : outputs_)
+    if (!value->empty()) given.push_back({name, *value});
+  return given;
 }
 
 void StageFlags::add_word(const std::string& name, std::string& value, const std::vector<std::string>& words,
@@ -319,14 +352,17 @@ int run_stage_program(int argc, char** argv, const std::string& program, const s
   if (const std::optional<int> exit_code = parse_command_line(app, argc, argv, program)) return *exit_code;
   flags.write_back();
   options.image_flags = describe_flags(stage_flags);
+  options.more_outputs = flags.outputs();
 
   InterruptHandler interrupt_handler;
   return run_reporting_errors(
       program,
       [&] {
         if (!is_batch_path(options.out)) image_format_for(options.out);
-        for (const std::string& file : output_files(options.out)) check_output_writable(file);
-        require_outputs_spare_inputs(options.out, {options.scene});
+        // Every output is checked before anything renders: none may fail, or be lost, at the end.
+        const std::vector<NamedOutput> outputs = outputs_of(options.out, options.more_outputs);
+        check_outputs(outputs);
+        require_outputs_spare_inputs(outputs, {options.scene});
         run();
       },
       options.scene);

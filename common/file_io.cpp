@@ -149,7 +149,11 @@ void check_output_writable(const fs::path& path) {
 bool same_file(const fs::path& a, const fs::path& b) {
   std::error_code ec;
   if (fs::equivalent(a, b, ec)) return true;
-  const fs::path x = fs::weakly_canonical(a, ec), y = fs::weakly_canonical(b, ec);
+  // Absolute first: of a relative path whose first part does not exist, weakly_canonical returns
+  // the path unchanged, so "o.png" and "./o.png" would differ.
+  const fs::path x = fs::weakly_canonical(fs::absolute(a, ec), ec);
+  if (ec) return false;
+  const fs::path y = fs::weakly_canonical(fs::absolute(b, ec), ec);
   return !ec && x == y;
 }
 

@@ -9,8 +9,11 @@
 
 #include <bit>
 #include <cstdint>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -51,6 +54,22 @@ void write_image(const fs::path& path, const Image& image, const ImageEncoding& 
     case ImageFormat::pfm: write_file_atomically(path, encode_pfm(image)); break;
     case ImageFormat::exr: write_file_atomically(path, encode_exr(image, encoding.exr_half)); break;
   }
+}
+
+void write_output_image(const char* program, const fs::path& path, const Image& image, const ImageEncoding& encoding) {
+  if (encoding.exr_half && image_format_for(path) == ImageFormat::exr)
+    if (const std::uint64_t beyond = count_beyond_half(image))
+      std::fprintf(stderr, "%s: warning: %llu values lie beyond %g, the largest half float, and are written as %g "
+                   "(write 32-bit floats without --exr-half to keep them)\n",
+                   program, static_cast<unsigned long long>(beyond), double(kLargestHalf), double(kLargestHalf));
+  write_image(path, image, encoding);
+}
+
+std::uint64_t count_beyond_half(const Image& image) {
+  std::uint64_t beyond = 0;
+  for (const Color& c : image.pixels())
+    for (const float v : {c.r, c.g, c.b}) beyond += std::abs(v) > kLargestHalf ? 1 : 0;
+  return beyond;
 }
 
 std::vector<char> encode_png(const Image& image, const DisplayTransform& display) {
@@ -94,8 +113,9 @@ std::vector<char> encode_exr(const Image& image, bool half) {
   const size_t n = image.pixel_count();
   std::vector<float> planes[3];
   for (auto& plane : planes) plane.resize(n);
+  const float limit = half ? kLargestHalf : std::numeric_limits<float>::max();
   for (size_t i = 0; i < n; ++i) {
-    const Color& c = image.pixels()[i];
+    const Color c = glm::clamp(image.pixels()[i], -limit, limit);
     planes[0][i] = c.b, planes[1][i] = c.g, planes[2][i] = c.r;
   }
   unsigned char* plane_pointers[3] = {reinterpret_cast<unsigned char*>(planes[0].data()),

@@ -31,8 +31,19 @@ struct ImageEncoding {
 };
 
 void write_image(const std::filesystem::path& path, const Image& image, const ImageEncoding& encoding = {});
+// The same for a program's output, with a warning on stderr, as `program`, for every value that
+// its encoding cannot hold and writes changed (a half float's range).
+void write_output_image(const char* program, const std::filesystem::path& path, const Image& image,
+                        const ImageEncoding& encoding);
+
+// The largest finite half float (IEEE 754 binary16). Beyond it a value would round to infinity, so
+// a half EXR holds it in place of anything larger in magnitude: no file ever holds an infinity.
+inline constexpr float kLargestHalf = 65504.0f;
+// How many channel values of `image` lie beyond +-kLargestHalf.
+std::uint64_t count_beyond_half(const Image& image);
 
 std::vector<char> encode_png(const Image& image, const DisplayTransform& display = {});
+// With `half`, values beyond +-kLargestHalf are written as +-kLargestHalf.
 std::vector<char> encode_exr(const Image& image, bool half);
 // Reads the R, G and B channels (float or half; any others ignored) of a scanline OpenEXR image from
 // its bytes; `name` names it in messages. For tests and tools: it trusts the file's size.

@@ -85,7 +85,7 @@ void write_render(const char* program, const CommonOptions& options, const std::
   } else {
     Image image = sums.mean();
     if (meaning == PixelMeaning::depth && image_format_for(options.out) == ImageFormat::png) scale_depth_for_png(image);
-    write_image(options.out, image, options.encoding);
+    write_output_image(program, options.out, image, options.encoding);
   }
   if (interrupt_requested()) {
     std::printf("%s: interrupted by %s: wrote %s with %s of %s samples (%.1f%%), %s\n", program, signal_name,

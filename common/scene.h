@@ -212,6 +212,9 @@ SceneDescription load_scene(const std::filesystem::path& path);
 inline constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t(64) << 20;
 // The same from text already in memory; `source` names it in messages.
 SceneDescription parse_scene(const std::string& text, const std::string& source);
+// Every file a scene read besides its own: meshes, textures and the environment map. No output may
+// be one of them.
+std::vector<std::string> files_read_by(const SceneDescription& scene);
 
 // Every position a scene gives (vertices, centres, the camera, lights) and every bounded shape's
 // box lie within +-kMaxCoordinate, and sizes are at most that: the squared distances every

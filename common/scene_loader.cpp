@@ -423,4 +423,15 @@ SceneDescription load_scene(const std::filesystem::path& path) {
   return parse_scene(read_input_file(path, "scene file", kMaxSceneFileBytes), path.string());
 }
 
+std::vector<std::string> files_read_by(const SceneDescription& scene) {
+  std::vector<std::string> files;
+  for (const Shape& shape : scene.shapes)
+    if (const Mesh* mesh = std::get_if<Mesh>(&shape.geometry)) files.push_back(mesh->file);
+  for (const Material& material : scene.materials)
+    for (const auto& texture : {material.albedo_texture, material.specular_texture})
+      if (texture) files.push_back(texture->file);
+  if (scene.environment && !scene.environment->file.empty()) files.push_back(scene.environment->file);
+  return files;
+}
+
 }  // namespace rt

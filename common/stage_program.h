@@ -41,7 +41,13 @@ class StageFlags {
   void add(const std::string& name, int& value, const std::string& help, FlagRule rule = {});
   void add(const std::string& name, float& value, const std::string& help, FlagRule rule = {});
   void add(const std::string& name, std::optional<float>& value, const std::string& help, FlagRule rule = {});
+  // Text; an empty value is refused.
   void add(const std::string& name, std::string& value, const std::string& help);
+  // A file the program writes besides --out: checked with --out's before anything renders
+  // (writable, not another output, not a file the scene reads).
+  void add_output(const std::string& name, std::string& value, const std::string& help);
+  // The outputs given on the command line, after parsing.
+  std::vector<NamedOutput> outputs() const;
   // A word from `words`.
   void add_word(const std::string& name, std::string& value, const std::vector<std::string>& words,
                 const std::string& help);
@@ -72,6 +78,7 @@ class StageFlags {
   CLI::App& app_;
   std::deque<int> numbers_;  // a deque: the numbers stay where the parser was told they are
   std::vector<std::function<void()>> write_backs_;
+  std::vector<std::pair<std::string, const std::string*>> outputs_;
 };
 
 // Parses the command line into `options` (plus whatever `add_stage_flags` registered), then calls

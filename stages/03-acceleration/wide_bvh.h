@@ -99,6 +99,11 @@ template <class HitPrimitive>
   };
 }
 
+// Whether a ray can be traced at all. The slab test ignores a NaN operand (intersect_aabb), so a ray
+// with a NaN in it would "enter" every box, the empty slots of a node too, whose child is no node:
+// such a ray (a lens at 10^8 units, a hit record gone wrong upstream) meets nothing instead.
+[[gnu::always_inline]] inline bool traversable(const Ray& ray) { return is_finite(ray.origin) && is_finite(ray.direction); }
+
 // A stack entry: a child of some node (interior when count == 0) and where the ray enters its box.
 struct WideBvhEntry {
   std::uint32_t child, count;
@@ -110,7 +115,7 @@ std::optional<float> wide_bvh_closest_hit(const WideBvh& bvh, const Ray& ray, In
   std::optional<float> closest;
   // No test of the whole tree's box first: the root's four boxes are tested next anyway, and in a
   // closed scene (a room) every ray is inside it.
-  if (bvh.nodes.empty()) return closest;
+  if (bvh.nodes.empty() || !traversable(ray)) return closest;
   const RayInverse inverse(ray);
   WideBvhEntry stack[WideBvh::kStackSize];
   int stack_size = 0;
@@ -148,7 +153,7 @@ std::optional<float> wide_bvh_closest_hit(const WideBvh& bvh, const Ray& ray, In
 
 template <class HitsLeaf>
 bool wide_bvh_any_hit(const WideBvh& bvh, const Ray& ray, Interval range, HitsLeaf&& hits_leaf) {
-  if (bvh.nodes.empty()) return false;
+  if (bvh.nodes.empty() || !traversable(ray)) return false;
   const RayInverse inverse(ray);
   WideBvhEntry stack[WideBvh::kStackSize];
   int stack_size = 0;

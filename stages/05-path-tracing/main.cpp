@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
                   finite_in(1e-6, 1.0));
         flags.add("--adaptive-min-spp", adaptive.min_spp, "Paths per pixel before the first test (default 16)",
                   decimal_in(2, kMaxSpp));
-        flags.add("--sample-map", sample_map,
+        flags.add_output("--sample-map", sample_map,
                   "Also write a PNG heat map of the paths each pixel took (black: none, pale yellow: --spp)");
       },
       [&] {

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <sys/resource.h>
 
 #include <csignal>
@@ -120,7 +122,7 @@ TEST(Exr, FloatRoundTripIsBitExact) {
 }
 
 // Half floats keep 11 significant bits: every value comes back within half an ulp of half
-// (2^-11 relative), and the 1e-30 and 3.4e38 beyond half's range come back as 0 and infinity.
+// (2^-11 relative).
 TEST(Exr, HalfRoundTripKeepsElevenBits) {
   ScratchDir dir;
   Image image(64, 3);
@@ -135,6 +137,29 @@ TEST(Exr, HalfRoundTripKeepsElevenBits) {
     ASSERT_NEAR(back.pixels()[i].r, image.pixels()[i].r, image.pixels()[i].r * 0x1p-11f) << i;
   write_image(dir / "f.exr", image);
   EXPECT_LT(bytes.size(), testing::read_text(dir / "f.exr").size()) << "half the bytes per channel";
+}
+
+// Found by trying: --exr-half wrote +inf for radiance above 65504, half's largest value. Such
+// values are written as +-65504 and counted for the warning (from 65520 on, half's rounding gives
+// infinity); 65504 itself is held exactly and not counted, the next float above it is.
+TEST(Exr, HalfClampsWhatItCannotHoldInsteadOfWritingInfinity) {
+  ScratchDir dir;
+  const float above = std::nextafter(kLargestHalf, 1e30f);
+  const std::vector<float> values = {kLargestHalf, above, 1e10f, 3.4e38f, -kLargestHalf, -above, -3.4e38f, 1.0f};
+  Image image(int(values.size()), 1);
+  for (size_t i = 0; i < values.size(); ++i) image.at(int(i), 0) = Color(values[i], 1.0f, -values[i]);
+  EXPECT_EQ(count_beyond_half(image), 10u);  // 5 of the 8 values, each in r and in b
+  ImageEncoding encoding;
+  encoding.exr_half = true;
+  write_image(dir / "h.exr", image, encoding);
+  const Image back = decode_exr(testing::read_text(dir / "h.exr"), "h.exr");
+  for (size_t i = 0; i < values.size(); ++i) {
+    const float expected = std::clamp(values[i], -kLargestHalf, kLargestHalf);
+    EXPECT_EQ(back.at(int(i), 0).r, expected) << values[i];
+    EXPECT_EQ(back.at(int(i), 0).b, -expected) << values[i];
+  }
+  write_image(dir / "f.exr", image);  // 32-bit floats hold them all as they are
+  EXPECT_EQ(decode_exr(testing::read_text(dir / "f.exr"), "f.exr"), image);
 }
 
 TEST(Exr, ABrokenFileIsAnInputErrorNamingIt) {

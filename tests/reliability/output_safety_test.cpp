@@ -80,6 +80,53 @@ TEST(OutputsSpareInputs, NeitherIsAMeshNorAnImageOfABatch) {
   }
 }
 
+// Found by trying: --out or --sample-map naming a scene's texture or environment map replaced it.
+// Every image a scene reads is an input.
+TEST(OutputsSpareInputs, NeitherATextureNorTheEnvironmentMap) {
+  ScratchDir dir;
+  write_image(dir / "grid.png", Image(4, 4, Color(0.5f)));
+  write_image(dir / "sky.pfm", Image(8, 4, Color(0.25f)));
+  write_text(dir / "scene.json", R"({"camera": {"position": [0, 0, -5], "look_at": [0, 0, 0], "vfov": 30},
+    "environment": {"file": "sky.pfm"}, "materials": {"m": {"albedo": {"file": "grid.png"}}},
+    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})");
+  const std::string grid = read_text(dir / "grid.png"), sky = read_text(dir / "sky.pfm");
+  const std::string scene = " --scene " + (dir / "scene.json").string() + " --width 8 --height 6 --spp 1 ";
+  for (const char* program : kPrograms)
+    for (const char* input : {"grid.png", "sky.pfm"}) {
+      const auto r = run_command(program + scene + "--out " + (dir / input).string(), dir);
+      expect_one_line_error(r, 2, "--out " + (dir / input).string() + " would overwrite the input");
+    }
+  for (const std::string& map : {(dir / "grid.png").string(), (dir / "sub/../grid.png").string()}) {
+    std::filesystem::create_directories(dir / "sub");
+    const auto r = run_command(STAGE5_EXE + scene + "--adaptive 0.1 --out " + (dir / "o.pfm").string() +
+                                   " --sample-map " + map, dir);
+    expect_one_line_error(r, 2, "--sample-map " + map + " would overwrite the input");
+  }
+  EXPECT_EQ(read_text(dir / "grid.png"), grid);
+  EXPECT_EQ(read_text(dir / "sky.pfm"), sky);
+}
+
+// Found by trying: --sample-map naming --out's file lost the map, and a --sample-map in a missing
+// folder was refused only after the whole render, with the image then not written either. Every
+// output is checked before anything renders.
+TEST(OutputsAreCheckedFirst, TwoOutputsAreNeverOneFileAndAMissingFolderStopsTheRunAtOnce) {
+  ScratchDir dir;
+  write_text(dir / "scene.json", kSphere);
+  const std::string run = std::string(STAGE5_EXE) + " --scene " + (dir / "scene.json").string() + " --adaptive 0.1 ";
+  const std::string out = (dir / "o.png").string();
+  std::filesystem::create_directories(dir / "sub");
+  for (const std::string& map : {out, (dir / "." / "o.png").string(), (dir / "sub/../o.png").string()}) {
+    const auto r = run_command(run + "--out " + out + " --sample-map " + map, dir);
+    expect_one_line_error(r, 2, "--sample-map " + map + " is the file --out writes too");
+    EXPECT_FALSE(std::filesystem::exists(dir / "o.png"));
+  }
+  // A render of 6.5 * 10^10 samples: a check after it would not be reached within the test's time.
+  const auto missing = run_command(run + "--width 4000 --height 4000 --spp 4096 --out " + out + " --sample-map " +
+                                       (dir / "none/map.png").string(), dir);
+  expect_one_line_error(missing, 1, "does not exist");
+  EXPECT_FALSE(std::filesystem::exists(dir / "o.png"));
+}
+
 // Found by trying: merge --out naming one of its inputs destroyed it.
 TEST(OutputsSpareInputs, MergeNeverWritesOverWhatItReads) {
   ScratchDir dir;
@@ -217,6 +264,40 @@ TEST(NonFiniteValues, ARenderWritesThemBlackAndSaysSo) {
   const Image image = read_pfm(dir / "nan.pfm");
   EXPECT_EQ(image.at(0, 0), Color(0.0f));
   EXPECT_EQ(image.at(1, 0), Color(0.5f));
+}
+
+// Found by trying: --exr-half wrote +inf above 65504, from the stage programs and from merge.
+TEST(NonFiniteValues, AHalfExrClampsWhatItCannotHoldAndSaysSo) {
+  ScratchDir dir;
+  CommonOptions options;
+  options.out = (dir / "bright.exr").string();
+  options.encoding.exr_half = true;
+  RenderSettings settings;
+  settings.width = 2, settings.height = 1, settings.spp = 1;
+  SampleSums sums(2, 1);
+  sums.set(0, 0, Color(1e6f, 0.5f, 70000.0f), 1);
+  sums.set(1, 0, Color(65504.0f), 1);
+  ::testing::internal::CaptureStderr();
+  write_render("stage4", options, "scene.json", SceneDescription{}, settings, PixelMeaning::radiance, sums, 0.1);
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(),
+            "stage4: warning: 2 values lie beyond 65504, the largest half float, and are written as 65504 (write "
+            "32-bit floats without --exr-half to keep them)\n");
+  const Image image = decode_exr(read_text(dir / "bright.exr"), "bright.exr");
+  EXPECT_EQ(image.at(0, 0), Color(65504.0f, 0.5f, 65504.0f));
+  EXPECT_EQ(image.at(1, 0), Color(65504.0f));
+  // merge writes through the same function: its half EXR of a bright render is finite too.
+  write_text(dir / "scene.json", R"({"camera": {"position": [0, 0, -5], "look_at": [0, 0, 0], "vfov": 30},
+    "materials": {"m": {"albedo": [0.5, 0.5, 0.5]}},
+    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}],
+    "lights": [{"type": "point", "position": [0, 0, -3], "intensity": [1e9, 1e9, 1e9]}]})");
+  const std::string render = std::string(STAGE1_EXE) + " --scene " + (dir / "scene.json").string() + " --width 8 --height 6 ";
+  ASSERT_EQ(run_command(render + "--sample-range 0:1 --out " + (dir / "a.json").string(), dir).exit_code, 0);
+  const auto merged = run_command(std::string(MERGE_EXE) + " --exr-half --out " + (dir / "m.exr").string() + " " +
+                                      (dir / "a.json").string(), dir);
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  EXPECT_NE(merged.err.find("merge: warning: "), std::string::npos) << merged.err;
+  const Image merged_image = decode_exr(read_text(dir / "m.exr"), "m.exr");
+  for (const Color& c : merged_image.pixels()) EXPECT_TRUE(is_finite(c) && max_component(c) <= 65504.0f);
 }
 
 // Sample batches whose pixel sums are each a float but whose total is not.

@@ -181,6 +181,31 @@ TEST(CommandLine, ImpossibleNumbersAreOneLineUsageErrors) {
     }
 }
 
+// Found by trying: "--exposure 0x10" was read as 16 (std::stod reads hexadecimal), and an empty
+// --strategy or --sample-map was taken as if the flag were absent. Every float flag shares the one
+// validator; every text flag refuses an empty value.
+TEST(CommandLine, HexadecimalFloatsAndEmptyTextAreOneLineUsageErrors) {
+  ScratchDir dir;
+  const std::string scene = " --scene " + source_path("assets/scenes/spheres.json").string() + " --out " +
+                            (dir / "x.png").string() + " --width 8 --height 8 --spp 1 ";
+  const std::pair<const char*, const char*> cases[] = {
+      {STAGE1_EXE, "--exposure 0x10"}, {STAGE1_EXE, "--white 0x1p3"},  {STAGE1_EXE, "--gamma 0X2"},
+      {STAGE1_EXE, "--exposure inf"},  {STAGE1_EXE, "--exposure nan"}, {STAGE2_EXE, "--epsilon 0x1p-10"},
+      {STAGE5_EXE, "--adaptive 0x0.1p0"}, {STAGE6_EXE, "--method sppm --radius 0x1"},
+      {STAGE6_EXE, "--method sppm --alpha 0x.8p0"}, {STAGE6_EXE, "--strategy ''"},
+      {STAGE5_EXE, "--adaptive 0.1 --sample-map ''"}};
+  for (const auto& [program, flags] : cases) {
+    const auto r = testing::run_command(std::string(program) + scene + flags, dir);
+    testing::expect_one_line_error(r, 2, std::string(flags).find("''") != std::string::npos ? "must not be empty"
+                                                                                           : "not a decimal number");
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.png")) << program << " " << flags;
+  }
+  // Decimal notation in all its forms is still a number.
+  for (const char* exposure : {"1", "-1.5", "+.5", "2e-1", "1E1"})
+    EXPECT_EQ(testing::run_command(std::string(STAGE1_EXE) + scene + "--exposure " + exposure, dir).exit_code, 0)
+        << exposure;
+}
+
 // A render in this process that a "signal" stops after `after` samples: every pixel it reached is
 // the mean of the samples it finished, so with a constant radiance exactly that constant.
 TEST(Interrupt, PartialImageIsNormalizedPerPixel) {

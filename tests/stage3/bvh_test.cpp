@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <tuple>
 
 namespace rt {
@@ -36,6 +37,27 @@ TEST_P(Builders, AnyHitAgreesWithClosestHit) {
   }
   EXPECT_GT(occluded, 1000);
   EXPECT_LT(occluded, 19000);
+}
+
+// A ray with a NaN or an infinity in it (a lens of 10^8 units, a hit record gone wrong) meets
+// nothing, in every tree. The slab test ignores NaN operands, so such a ray would enter every box:
+// in the 4-wide tree the empty slots of a node too (one sphere leaves three of the root's four
+// empty), whose child is no node at all.
+TEST_P(Builders, RaysWithANanOrAnInfinityMeetNothing) {
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const Ray rays[] = {{Vec3(nan), Vec3(nan)}, {Vec3(0.0f, 0.0f, -5.0f), Vec3(0.0f, nan, 1.0f)},
+                      {Vec3(nan, 0.0f, -5.0f), Vec3(0.0f, 0.0f, 1.0f)}, {Vec3(0.0f, 0.0f, -inf), Vec3(0.0f, 0.0f, 1.0f)},
+                      {Vec3(0.0f, 0.0f, -5.0f), Vec3(0.0f, 0.0f, inf)}};
+  const auto one_sphere = primitives_of({}, {Sphere{Vec3(0.0f), 1.0f}});
+  ASSERT_TRUE(BvhAggregate(one_sphere, options()).closest_hit(Ray{Vec3(0.0f, 0.0f, -5.0f), Vec3(0.0f, 0.0f, 1.0f)},
+                                                              Interval::positive()));  // the finite ray does
+  for (const auto& set : {one_sphere, mix()}) {
+    const BvhAggregate bvh(set, options());
+    for (const Ray& ray : rays) {
+      EXPECT_FALSE(bvh.closest_hit(ray, Interval::positive()));
+      EXPECT_FALSE(bvh.occluded(ray, Interval::positive()));
+    }
+  }
 }
 
 TEST(BvhAgainstNaive, MixOfSpheresAndTriangles) {

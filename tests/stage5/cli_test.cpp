@@ -64,6 +64,22 @@ TEST(Stage5Cli, BadInputIsOneLine) {
   expect_one_line_error(missing, 1, "none.json");
 }
 
+// The scene format allows a lens of radius up to 10^18. Rays from so far away lose the sphere's
+// hit point to rounding (NaN), and the next bounce's NaN ray once crashed the 4-wide tree: every
+// sample must end, finite or dropped, and the image be written.
+TEST(Stage5Cli, AHugeLensRendersWithoutACrash) {
+  ScratchDir dir;
+  testing::write_text(dir / "lens.json", R"({"render": {"width": 16, "height": 12, "spp": 4},
+    "camera": {"position": [0, 0, -5], "look_at": [0, 0, 0], "vfov": 40, "aperture_radius": 1e18},
+    "materials": {"grey": {"albedo": [0.5, 0.5, 0.5]}},
+    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "grey"}],
+    "lights": [{"type": "point", "position": [0, 4, -4], "intensity": [10, 10, 10]}]})");
+  const auto r = run_command(stage5("--scene " + (dir / "lens.json").string() + " --out " + (dir / "o.pfm").string()), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image image = read_pfm(dir / "o.pfm");
+  for (const Color& pixel : image.pixels()) EXPECT_TRUE(is_finite(pixel));
+}
+
 TEST(Stage5Adaptive, WritesTheImageAndItsHeatMap) {
   ScratchDir dir;
   const std::string scene = source_path("assets/scenes/environment.json").string();

@@ -63,13 +63,13 @@ std::string spp_reached(const MergeResult& r) {
 void run(const std::string& out, const std::optional<int>& spp, bool partial, const std::optional<std::string>& reference,
          const std::vector<std::string>& inputs, const ImageEncoding& encoding) {
   if (!is_batch_path(out)) image_format_for(out);
-  for (const std::string& file : output_files(out)) check_output_writable(file);
+  check_outputs(outputs_of(out));
   const std::vector<SampleBatch> batches = read_batches(inputs);
   std::vector<std::string> read;  // every file merge reads: writing one of them would destroy it
   for (const SampleBatch& b : batches)
     read.insert(read.end(), {b.file.string(), batch_sum_path(b.file).string(), batch_count_path(b.file).string()});
   if (reference) read.push_back(*reference);
-  require_outputs_spare_inputs(out, read);
+  require_outputs_spare_inputs(outputs_of(out), read);
   // The merged image is held whole: refuse, with the figures, one this machine could not hold.
   if (!batches.empty())
     check_image_fits(out, batches[0].identity.width, batches[0].identity.height, memory_limit());
@@ -94,7 +94,7 @@ void run(const std::string& out, const std::optional<int>& spp, bool partial, co
     result.merged.file = out;
     write_sample_batch(result.merged);
   } else {
-    write_image(out, image, encoding);
+    write_output_image("merge", out, image, encoding);
   }
   const RenderIdentity& id = result.merged.identity;
   std::printf("merge: %zu batch%s of %s %s (%dx%d, seed %llu): %s%s%s; wrote %s\n", batches.size(),
