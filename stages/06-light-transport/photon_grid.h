@@ -13,6 +13,7 @@
 #include "common/math.h"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace rt {
@@ -25,8 +26,11 @@ struct Photon {
 
 class PhotonGrid {
  public:
-  // `cell` > 0: the side of a cell, at least twice the largest radius a lookup will ask for.
-  PhotonGrid(std::vector<Photon> photons, float cell);
+  // `cell` > 0: the side of a cell, at least twice the largest radius a lookup will ask for. The
+  // photons come in chunks, as the threads traced them, taken in order: joining them into one array
+  // first cost more than sorting them (1.3 s a pass of 3 * 10^6 photons, a page fault per 4 KiB).
+  PhotonGrid(std::span<const std::vector<Photon>> chunks, float cell);
+  PhotonGrid(const std::vector<Photon>& photons, float cell) : PhotonGrid(std::span(&photons, 1), cell) {}
 
   // Calls visit(photon) for each photon within `radius` of x (|p - x| <= radius), cells in a
   // fixed order and each cell's photons in the order they were traced.

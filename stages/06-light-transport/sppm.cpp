@@ -120,14 +120,20 @@ SampleSums render_sppm(const LightingScene& scene, const Camera& camera, const R
   const float pixel_angle = 2.0f * camera.tan_half_vfov / float(camera.height);
   std::vector<PhotonStatistics> stats(pixels, PhotonStatistics{0.0, std::max(options.initial_radius, 0.0f), Color(0.0f)});
   std::vector<Color> light(pixels, Color(0.0f));  // emitted and direct light, summed over the passes
+  std::vector<Color> light_with_pass(pixels);     // the same with the pass under way, kept once it ends
   std::vector<VisiblePoint> visible(pixels);
   const int chunks = (options.photons_per_pass + kPhotonsPerChunk - 1) / kPhotonsPerChunk;
   std::vector<std::vector<Photon>> chunk_photons(static_cast<size_t>(chunks));
 
+  // A stop (Ctrl-C) is checked inside a pass, per tile and per chunk of photons, since one pass of
+  // 10^7 photons takes many seconds: a pass it cuts short is dropped whole, and the image is made
+  // of the passes that ended.
   int passes = 0;
   for (; passes < settings.spp && !interrupt_requested(); ++passes) {
     const std::uint64_t pass = std::uint64_t(settings.first_sample + passes);
+    light_with_pass = light;
     parallel_for_tiles(width, height, threads, [&](const PixelRect& tile) {
+      if (interrupt_requested()) return;
       for (int y = tile.y0; y < tile.y1; ++y)
         for (int x = tile.x0; x < tile.x1; ++x) {
           const int px = window.x0 + x, py = window.y0 + y;
@@ -139,7 +145,7 @@ SampleSums render_sppm(const LightingScene& scene, const Camera& camera, const R
           const Ray ray = camera.aperture_radius > 0.0f ? generate_lens_ray(camera, film, rng.uniform2())
                                                         : generate_camera_ray(camera, film);
           const size_t i = size_t(y) * size_t(width) + size_t(x);
-          visible[i] = trace_visible_point(scene, ray, options, rng, light[i]);
+          visible[i] = trace_visible_point(scene, ray, options, rng, light_with_pass[i]);
           if (visible[i].at && stats[i].radius == 0.0f)
             stats[i].radius = kFootprintRadii * pixel_angle * std::max(visible[i].distance, 1e-30f);
         }
@@ -153,15 +159,16 @@ SampleSums render_sppm(const LightingScene& scene, const Camera& camera, const R
       out.clear();
       std::vector<PathVertex> path;
       const int first = c * kPhotonsPerChunk, last = std::min(options.photons_per_pass, first + kPhotonsPerChunk);
+      if (interrupt_requested()) return;
       for (int j = first; j < last; ++j) {
         Rng rng(settings.seed, kPhotonStream, pass * std::uint64_t(options.photons_per_pass) + std::uint64_t(j));
         trace_photon(scene, options, rng, path, out);
       }
     });
+    if (interrupt_requested()) break;
     if (max_radius > 0.0f) {
-      std::vector<Photon> photons;
-      for (const std::vector<Photon>& c : chunk_photons) photons.insert(photons.end(), c.begin(), c.end());
-      const PhotonGrid grid(std::move(photons), 2.0f * max_radius);
+      const PhotonGrid grid(chunk_photons, 2.0f * max_radius);
+      if (interrupt_requested()) break;
       parallel_for_tiles(width, height, threads, [&](const PixelRect& tile) {
         for (int y = tile.y0; y < tile.y1; ++y)
           for (int x = tile.x0; x < tile.x1; ++x) {
@@ -172,6 +179,7 @@ SampleSums render_sppm(const LightingScene& scene, const Camera& camera, const R
           }
       });
     }
+    light.swap(light_with_pass);
     if (progress) progress->advance(pixels);
   }
 

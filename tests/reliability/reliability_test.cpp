@@ -280,6 +280,48 @@ TEST(Interrupt, SigtermStopsWithinASecondAndWritesTheSamplesSoFar) { expect_stop
 // A closed terminal sends SIGHUP: the render is stopped and kept, not lost.
 TEST(Interrupt, SighupStopsLikeSigterm) { expect_stops_and_writes(SIGHUP); }
 
+// Found by trying: Ctrl-C in stage 6's SPPM waited for the photon pass under way to end (13-46 s
+// with 2 * 10^7 photons). The stop is checked per chunk of photons and between a pass's steps: a
+// pass cut short is dropped, and a stop in the first pass writes nothing, as for every method.
+// Here a pass takes some 2.5 s (3 * 10^6 photons): 0.7 s in, the run must end within 2 s.
+TEST(Interrupt, SppmStopsInsideAPhotonPass) {
+  ScratchDir dir;
+  ChildProcess child({STAGE6_EXE, "--scene", source_path("assets/scenes/cornell-box.json").string(), "--method", "sppm",
+                      "--width", "16", "--height", "16", "--spp", "100000", "--photons", "3000000", "--threads", "2",
+                      "--out", (dir / "sppm.pfm").string()},
+                     dir / "stdout.txt", dir / "stderr.txt");
+  ASSERT_TRUE(child.started());
+  std::this_thread::sleep_for(700ms);
+  child.signal(SIGINT);
+  const std::optional<int> status = child.wait_for(2000ms);
+  ASSERT_TRUE(status) << "still running 2 s after Ctrl-C";
+  ASSERT_TRUE(WIFEXITED(*status));
+  EXPECT_EQ(WEXITSTATUS(*status), 128 + SIGINT);
+  EXPECT_FALSE(std::filesystem::exists(dir / "sppm.pfm")) << "no pass had ended";
+}
+
+// The passes that ended before the stop are the image: finite, and lit.
+TEST(Interrupt, SppmKeepsThePassesThatEnded) {
+  ScratchDir dir;
+  ChildProcess child({STAGE6_EXE, "--scene", source_path("assets/scenes/cornell-box.json").string(), "--method", "sppm",
+                      "--width", "16", "--height", "16", "--spp", "100000", "--photons", "20000", "--threads", "2",
+                      "--out", (dir / "sppm.pfm").string()},
+                     dir / "stdout.txt", dir / "stderr.txt");
+  ASSERT_TRUE(child.started());
+  std::this_thread::sleep_for(1500ms);
+  child.signal(SIGINT);
+  const std::optional<int> status = child.wait_for(2000ms);
+  ASSERT_TRUE(status && WIFEXITED(*status));
+  EXPECT_EQ(WEXITSTATUS(*status), 128 + SIGINT);
+  const Image image = read_pfm(dir / "sppm.pfm");
+  double sum = 0.0;
+  for (const Color& c : image.pixels()) {
+    ASSERT_TRUE(is_finite(c));
+    sum += double(c.r + c.g + c.b);
+  }
+  EXPECT_GT(sum, 0.0);
+}
+
 // The render takes its samples in passes over the whole image, so a stopped one is a usable,
 // uniformly sampled image (each pixel at most one pass apart), not a few finished pixels: before,
 // every pixel took all 2^20 of its samples before the next began, and a stop after 0.7 s left one

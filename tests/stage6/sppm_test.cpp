@@ -83,7 +83,7 @@ TEST(PhotonGrid, FindsExactlyThePhotonsWithinTheRadius) {
 }
 
 TEST(PhotonGrid, FarPointsAndEmptyGrids) {
-  const PhotonGrid empty({}, 1.0f);
+  const PhotonGrid empty(std::vector<Photon>{}, 1.0f);
   int visits = 0;
   empty.for_each_within(Vec3(0.0f), 1.0f, [&](const Photon&) { ++visits; });
   EXPECT_EQ(visits, 0);
@@ -91,7 +91,7 @@ TEST(PhotonGrid, FarPointsAndEmptyGrids) {
   const PhotonGrid far({Photon{Vec3(1e12f, -1e12f, 0.0f), Vec3(0, 0, 1), Color(1.0f)}}, 1e-3f);
   far.for_each_within(Vec3(1e12f, -1e12f, 0.0f), 1.0f, [&](const Photon&) { ++visits; });
   EXPECT_EQ(visits, 1);
-  EXPECT_THROW(PhotonGrid({}, 0.0f), std::invalid_argument);
+  EXPECT_THROW(PhotonGrid(std::vector<Photon>{}, 0.0f), std::invalid_argument);
 }
 
 TEST(SppmFurnace, FindsTheClosedFormRadiance) {
