@@ -42,7 +42,8 @@ RenderSettings CommonOptions::settings_for(const SceneDescription& description) 
   require_outputs_spare_inputs(outputs_of(out, more_outputs), inputs);
   const MemoryLimit limit = memory_limit();
   check_image_fits(out, s.window().width(), s.window().height(), limit);
-  check_scene_fits(scene, triangle_count(description), s.window().area() * kBytesPerPixel, limit);
+  check_scene_fits(scene, triangle_count(description), {double(s.window().area()) * double(kBytesPerPixel), "the image"},
+                   limit);
   return s;
 }
 

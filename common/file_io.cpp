@@ -69,7 +69,7 @@ bool wait_readable(int fd, int milliseconds) {
 
 }  // namespace
 
-std::string read_input_file(const fs::path& path, const std::string& what, std::uintmax_t max_bytes) {
+std::string read_input_file(const fs::path& path, const std::string& what, std::uintmax_t max_bytes, std::size_t head) {
   const std::string name = path.string();
   // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer.
   const FileDescriptor file(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC));
@@ -87,12 +87,12 @@ std::string read_input_file(const fs::path& path, const std::string& what, std::
     throw InputError(name + ": " + what + " of " + std::to_string(size) + " bytes, more than the " +
                      std::to_string(max_bytes) + " this program reads");
   std::string bytes;
-  bytes.reserve(size_t(size));
+  bytes.reserve(std::min(size_t(size), head));
   char buffer[1 << 16];
-  while (true) {
+  while (bytes.size() < head) {
     if (!wait_readable(file.fd, 100))
       throw Interrupted{interrupt_signal(), "interrupted while reading " + name + ": nothing written"};
-    const ssize_t got = ::read(file.fd, buffer, sizeof buffer);
+    const ssize_t got = ::read(file.fd, buffer, std::min(sizeof buffer, head - bytes.size()));
     if (got == 0) break;
     if (got < 0) {
       if (errno == EINTR || errno == EAGAIN) continue;

@@ -22,7 +22,9 @@ void write_file_atomically(const std::filesystem::path& path, const std::vector<
 // of size 0 and may block for ever, /proc/kmsg), or is larger than `max_bytes`; `what` names the
 // kind of file in the message. The file is opened without blocking and read between checks for a
 // stop request, so Ctrl-C or SIGTERM ends even a read that would block (it throws Interrupted).
-std::string read_input_file(const std::filesystem::path& path, const std::string& what, std::uintmax_t max_bytes);
+// With `head`, only the file's first `head` bytes are read (a header, to check before the rest).
+std::string read_input_file(const std::filesystem::path& path, const std::string& what, std::uintmax_t max_bytes,
+                            std::size_t head = SIZE_MAX);
 
 // Checks before any work is done that `path` could be written: its directory exists and is
 // writable, it is not a directory itself, and its name fits the file system (NAME_MAX). Throws

@@ -203,7 +203,7 @@ Image read_pfm(const fs::path& path) {
   return decode_pfm(read_input_file(path, "PFM image", kMaxPfmFileBytes), path.string());
 }
 
-Image decode_pfm(const std::string& bytes, const std::string& name) {
+PfmHeader read_pfm_header(const std::string& bytes, const std::string& name) {
   std::istringstream in(bytes);
   std::string magic;
   long long width = 0, height = 0;
@@ -216,22 +216,26 @@ Image decode_pfm(const std::string& bytes, const std::string& name) {
                      std::to_string(height));
   if (scale == 0.0 || !std::isfinite(scale)) throw InputError(name + ": bad PFM scale");
   in.get();  // exactly one whitespace character ends the header
-  const int channels = magic == "PF" ? 3 : 1;
-  const bool file_is_little_endian = scale < 0.0;
-  // The header's size is checked against the bytes there are before anything is allocated.
-  const size_t floats = size_t(width) * size_t(height) * size_t(channels);
   const std::streamoff data_start = in.tellg();
-  if (data_start < 0 || bytes.size() - size_t(data_start) < floats * sizeof(float))
-    throw InputError(name + ": PFM data is truncated");
+  if (data_start < 0) throw InputError(name + ": PFM data is truncated");
+  return PfmHeader{int(width), int(height), magic == "PF" ? 3 : 1, scale < 0.0, size_t(data_start)};
+}
+
+Image decode_pfm(const std::string& bytes, const std::string& name) {
+  const PfmHeader header = read_pfm_header(bytes, name);
+  const size_t width = size_t(header.width), channels = size_t(header.channels);
+  // The header's size is checked against the bytes there are before anything is allocated.
+  const size_t floats = width * size_t(header.height) * channels;
+  if (bytes.size() - header.data_offset < floats * sizeof(float)) throw InputError(name + ": PFM data is truncated");
   std::vector<float> data(floats);
-  in.read(reinterpret_cast<char*>(data.data()), std::streamsize(data.size() * sizeof(float)));
-  if (file_is_little_endian != (std::endian::native == std::endian::little))
+  std::memcpy(data.data(), bytes.data() + header.data_offset, floats * sizeof(float));
+  if (header.little_endian != (std::endian::native == std::endian::little))
     for (float& v : data) v = std::bit_cast<float>(__builtin_bswap32(std::bit_cast<std::uint32_t>(v)));
 
-  Image image{int(width), int(height)};
+  Image image{header.width, header.height};
   for (int row = 0; row < image.height(); ++row)
     for (int x = 0; x < image.width(); ++x) {
-      const float* p = &data[(size_t(row) * size_t(width) + size_t(x)) * size_t(channels)];
+      const float* p = &data[(size_t(row) * width + size_t(x)) * channels];
       image.at(x, image.height() - 1 - row) = channels == 3 ? Color(p[0], p[1], p[2]) : Color(p[0]);
     }
   return image;

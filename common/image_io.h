@@ -57,6 +57,14 @@ std::vector<char> encode_pfm_grey(int width, int height, const std::vector<float
 Image read_pfm(const std::filesystem::path& path);
 // The same from the file's bytes already in memory; `name` names it in messages.
 Image decode_pfm(const std::string& bytes, const std::string& name);
+// A PFM file's header, read and checked (magic, size, scale) without touching its pixels, so that a
+// caller may refuse the size before anything is decoded. Throws InputError as decode_pfm does.
+struct PfmHeader {
+  int width, height, channels;
+  bool little_endian;
+  size_t data_offset;  // where the floats start
+};
+PfmHeader read_pfm_header(const std::string& bytes, const std::string& name);
 inline constexpr std::uintmax_t kMaxPfmFileBytes = std::uintmax_t(1) << 36;  // 65536^2 RGB floats
 
 

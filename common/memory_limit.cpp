@@ -101,17 +101,18 @@ void check_image_fits(const std::string& out, int width, int height, const Memor
   const std::uint64_t needed = pixels * kBytesPerPixel;
   if (needed > limit.bytes)
     throw InputError(out + ": a " + size + " image needs " + binary_size(double(needed)) +
-                     " of memory (the radiance and the encoded file), and " + limit.describe());
+                     " of memory (its sample sums, the image and the encoded file), and " + limit.describe());
 }
 
-void check_scene_fits(const std::string& scene, std::uint64_t triangles, std::uint64_t other_bytes,
+void check_scene_fits(const std::string& scene, std::uint64_t triangles, const OtherMemory& other,
                       const MemoryLimit& limit) {
   // In double: 10^5 bunnies are 7e9 triangles, whose bytes overflow no 64-bit integer yet, but a
   // product of two unchecked counts might.
-  const double needed = double(triangles) * double(kBytesPerTriangle) + double(other_bytes);
+  const double needed = double(triangles) * double(kBytesPerTriangle) + other.bytes;
   if (needed <= double(limit.bytes)) return;
-  throw InputError(scene + ": its " + std::to_string(triangles) + " triangles need about " + binary_size(needed) + " of memory (" + std::to_string(kBytesPerTriangle) +
-                   " bytes each with the acceleration structure, and the image), and " + limit.describe());
+  throw InputError(scene + ": the render needs about " + binary_size(needed) + " of memory (" +
+                   std::to_string(triangles) + " triangles at " + std::to_string(kBytesPerTriangle) +
+                   " bytes each with the acceleration structure, and " + other.what + "), and " + limit.describe());
 }
 
 }  // namespace rt

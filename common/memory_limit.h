@@ -32,10 +32,13 @@ std::uint64_t physical_memory_bytes();
 // "44.7 GiB", "512 bytes".
 std::string binary_size(double bytes);
 
-// Refuses an image of more than 2^31 - 1 pixels or one whose memory (kBytesPerPixel: the
-// radiance, 12 bytes, and the encoded file, up to 12 more) exceeds `limit`. Throws InputError
-// "OUT: a WxH image needs ..., and this machine has ...".
-inline constexpr std::uint64_t kBytesPerPixel = 24;
+// Refuses an image of more than 2^31 - 1 pixels or one whose memory (kBytesPerPixel) exceeds
+// `limit`. Throws InputError "OUT: a WxH image needs ..., and this machine has ...".
+// kBytesPerPixel is what a render of any stage holds per pixel at its peak: the sample sums and
+// counts (16 bytes), their copy with the non-finite pixels blackened (16), the mean image (12) and
+// the encoded file. Measured as peak resident memory (/usr/bin/time, the Cornell box at 1024^2
+// less at 256^2, stages 1-5 alike): 56 bytes a pixel for a PNG or PFM, 78 for an EXR.
+inline constexpr std::uint64_t kBytesPerPixel = 80;
 void check_image_fits(const std::string& out, int width, int height, const MemoryLimit& limit);
 
 // What a placed triangle costs at most in any stage: the world copy of its mesh, its corners and
@@ -43,9 +46,16 @@ void check_image_fits(const std::string& out, int width, int height, const Memor
 // /usr/bin/time on assets/scenes/bunnies.json (1.1 M triangles): peak resident memory 180 bytes
 // per triangle for stage 3's binary SAH tree, 200 for its 4-wide tree, 27 for stage 2.
 inline constexpr std::uint64_t kBytesPerTriangle = 256;
+// What a render holds besides its triangles, for check_scene_fits: its bytes, and what they are in
+// words ("the image", "the image and sppm's state: 248 bytes a pixel, ...").
+struct OtherMemory {
+  double bytes;
+  std::string what;
+};
 // Refuses a scene whose `triangles` (common/scene.h, triangle_count) at kBytesPerTriangle, plus
-// `other_bytes` (the image), exceed `limit`. Throws InputError "SCENE: its N triangles need ...".
-void check_scene_fits(const std::string& scene, std::uint64_t triangles, std::uint64_t other_bytes,
+// `other`, exceed `limit`. Throws InputError "SCENE: the render needs about ... (N triangles at 256
+// bytes each ..., and WHAT), and this machine has ...".
+void check_scene_fits(const std::string& scene, std::uint64_t triangles, const OtherMemory& other,
                       const MemoryLimit& limit);
 
 }  // namespace rt

@@ -18,14 +18,17 @@ namespace rt {
 enum class TexelEncoding { srgb, linear };
 
 // The largest texture accepted: 2^26 pixels (8192 x 8192, 768 MiB as float RGB). The size is read
-// from the file's header and checked before any pixel is decoded.
+// from the file's header and checked before any pixel is decoded, against this limit and against
+// the memory the process may use (common/memory_limit.h) at kTextureDecodeBytesPerPixel: the float
+// image (12 bytes) and the decoder's own buffer (3 bytes for 8-bit codes, 12 for floats).
 inline constexpr std::int64_t kMaxTexturePixels = std::int64_t(1) << 26;
+inline constexpr std::int64_t kTextureDecodeBytesPerPixel = 24;
 // A texture file over this many bytes is refused before it is read.
 inline constexpr std::uintmax_t kMaxTextureFileBytes = std::uintmax_t(1) << 30;
 
 // Throws InputError("FILE: problem") for a missing or unreadable file, a format stb_image (or the
-// PFM reader) cannot decode, a size over kMaxTexturePixels, and a texel that is not finite or is
-// negative.
+// PFM reader) cannot decode, a size over kMaxTexturePixels or over what memory allows, and a texel
+// that is not finite or is negative.
 Image read_texture_image(const std::filesystem::path& path, TexelEncoding encoding);
 // The same from the file's bytes already in memory; `name` names it in messages, and its ending
 // (.pfm) picks the PFM reader.

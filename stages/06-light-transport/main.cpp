@@ -64,6 +64,7 @@ int main(int argc, char** argv) {
         }
         const SceneDescription description = load_scene(options.scene);
         const RenderSettings settings = options.settings_for(description);
+        check_transport_fits(description, settings, transport, memory_limit());
         if (splits && settings.filter != PixelFilterType::box)
           throw UsageError("--filter: lt, bdpt and sppm use the box filter (a splat lands in one pixel; a visible "
                            "point stands for one pixel); other filters, from --filter or the scene, need --method pt");

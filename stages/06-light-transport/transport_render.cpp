@@ -37,6 +37,24 @@ void check_renderable(const SceneDescription& description, const LightingScene& 
                      "--method pt or sppm");
 }
 
+void check_transport_fits(const SceneDescription& description, const RenderSettings& settings,
+                          const TransportOptions& options, const MemoryLimit& limit) {
+  const double pixels = double(settings.window().area());
+  const std::string method = method_name(options.method);
+  OtherMemory other{pixels * double(kBytesPerPixel), "the image"};
+  if (options.method == TransportMethod::lt || options.method == TransportMethod::bdpt)
+    other = {pixels * double(kBytesPerPixel + kSplatBytesPerPixel),
+             "the image with " + method + "'s splats, " + std::to_string(kBytesPerPixel + kSplatBytesPerPixel) +
+                 " bytes a pixel"};
+  if (options.method == TransportMethod::sppm)
+    other = {pixels * double(kBytesPerPixel + kSppmBytesPerPixel) +
+                 double(options.sppm.photons_per_pass) * double(kSppmBytesPerPhoton),
+             "the image with sppm's state, " + std::to_string(kBytesPerPixel + kSppmBytesPerPixel) +
+                 " bytes a pixel, and " + std::to_string(options.sppm.photons_per_pass) + " photons a pass at " +
+                 std::to_string(kSppmBytesPerPhoton) + " bytes each"};
+  check_scene_fits(description.source, triangle_count(description), other, limit);
+}
+
 namespace {
 
 // Stage 1's pixel loop (add_pixel_samples, in passes) where each sample may also leave splats

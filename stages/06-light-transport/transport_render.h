@@ -34,6 +34,16 @@ struct TransportOptions {
 void check_renderable(const SceneDescription& description, const LightingScene& scene, const Camera& camera,
                       TransportMethod method);
 
+// Throws InputError, before the scene is built, for a render `options.method` could not hold within
+// `limit`: every stage's kBytesPerPixel (common/memory_limit.h) and what the method adds, each
+// figure measured as peak resident memory (/usr/bin/time on the Cornell box, two sizes apart):
+// lt and bdpt 64 bytes a pixel (the splats' double-precision film and the tiles' splat lists),
+// sppm 192 a pixel (visible points, photon statistics, two light sums) and 192 a photon of a pass
+// (the chunks the threads fill, the grid's sorted copy and its table).
+inline constexpr std::uint64_t kSplatBytesPerPixel = 64, kSppmBytesPerPixel = 192, kSppmBytesPerPhoton = 192;
+void check_transport_fits(const SceneDescription& description, const RenderSettings& settings,
+                          const TransportOptions& options, const MemoryLimit& limit);
+
 // Per pixel of settings.window() (the whole image for lt, bdpt and sppm) the sum of its samples
 // and their number. For lt and bdpt a light-tracing splat counts (pixels / light paths) times, one
 // light path having been traced per camera sample (camera_importance.h); they take the box filter

@@ -82,11 +82,36 @@ TEST(TextureImage, BrokenFilesGetOneLineNamingTheFile) {
   // The header alone says 100000 x 100000: refused before a pixel is decoded.
   EXPECT_EQ(message("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 100000\n", "huge.hdr"),
             "huge.hdr: image of 100000x100000 pixels; a texture may have at most 8192x8192");
+  // Found by trying: a PNG claiming 100000 x 100000 was "unknown image type" (stb_image refuses it
+  // without a reason). Its IHDR chunk says the size.
+  std::string huge_png = bytes_of(encode_png(Image(1, 1, Color(0.5f))));
+  for (int i = 0; i < 2; ++i) {
+    const std::uint32_t side = 100000;
+    for (int b = 0; b < 4; ++b) huge_png[size_t(16 + 4 * i + b)] = char((side >> (24 - 8 * b)) & 0xff);
+  }
+  EXPECT_EQ(message(huge_png, "huge.png"), "huge.png: image of 100000x100000 pixels; a texture may have at most 8192x8192");
   Image nan(2, 1, Color(1.0f));
   nan.at(1, 0).g = std::nanf("");
   EXPECT_EQ(message(bytes_of(encode_pfm(nan)), "nan.pfm"), "nan.pfm: texel (1, 0) is not a finite, non-negative colour");
   Image negative(1, 1, Color(-1.0f));
   EXPECT_EQ(message(bytes_of(encode_pfm(negative)), "neg.pfm"), "neg.pfm: texel (0, 0) is not a finite, non-negative colour");
+}
+
+// Found by trying: a PFM texture over the size was read and decoded whole (16.8 s, 3 GB) before
+// its size was checked. Its header is read first: this one claims 9000 x 9000 and has no pixels
+// at all, so reading past the header would say "truncated" instead.
+TEST(TextureImage, AFileOverTheSizeIsRefusedFromItsHeader) {
+  ScratchDir scratch;
+  write_text(scratch / "big.pfm", "PF\n9000 9000\n-1\n");
+  EXPECT_EQ(error_message([&] { read_texture_image(scratch / "big.pfm", TexelEncoding::linear); }),
+            (scratch / "big.pfm").string() + ": image of 9000x9000 pixels; a texture may have at most 8192x8192");
+  write_text(scratch / "edge.pfm", "PF\n8192 8193\n-1\n");  // one row over 2^26 pixels
+  EXPECT_NE(error_message([&] { read_texture_image(scratch / "edge.pfm", TexelEncoding::linear); })
+                .find("image of 8192x8193 pixels"),
+            std::string::npos);
+  write_text(scratch / "fits.pfm", "PF\n8192 8192\n-1\n");  // exactly 2^26: on to the pixels, which are missing
+  EXPECT_NE(error_message([&] { read_texture_image(scratch / "fits.pfm", TexelEncoding::linear); }).find("truncated"),
+            std::string::npos);
 }
 
 // Scene files with textures and an environment, written next to their images.

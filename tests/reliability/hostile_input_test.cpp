@@ -281,14 +281,15 @@ TEST(HostileFiles, KernelInterfacesFifosAndFoldersAreRefusedWithoutBlocking) {
 TEST(Memory, ASceneIsRefusedBeforeBuildingWithTheFigures) {
   const MemoryLimit machine{std::uint64_t(24) << 30, MemoryLimit::Source::machine};
   // 10^5 placed bunnies of 69,451 triangles: the 13 MB scene that asked for 800 GB.
-  EXPECT_EQ(error_message([&] { check_scene_fits("bunnies.json", 6945100000ull, 0, machine); }),
-            "bunnies.json: its 6945100000 triangles need about 1.6 TiB of memory (256 bytes each with the "
+  EXPECT_EQ(error_message([&] { check_scene_fits("bunnies.json", 6945100000ull, {0.0, "the image"}, machine); }),
+            "bunnies.json: the render needs about 1.6 TiB of memory (6945100000 triangles at 256 bytes each with the "
             "acceleration structure, and the image), and this machine has 24.0 GiB");
-  EXPECT_NO_THROW(check_scene_fits("one.json", 69451, 0, machine));
+  EXPECT_NO_THROW(check_scene_fits("one.json", 69451, {0.0, "the image"}, machine));
   // The boundary: exactly the limit fits, a byte more does not.
   const MemoryLimit tight{1000 * kBytesPerTriangle + 24, MemoryLimit::Source::address_space};
-  EXPECT_NO_THROW(check_scene_fits("s.json", 1000, 24, tight));
-  EXPECT_NE(error_message([&] { check_scene_fits("s.json", 1000, 25, tight); }).find("(ulimit -v)"), std::string::npos);
+  EXPECT_NO_THROW(check_scene_fits("s.json", 1000, {24.0, "the image"}, tight));
+  EXPECT_NE(error_message([&] { check_scene_fits("s.json", 1000, {25.0, "the image"}, tight); }).find("(ulimit -v)"),
+            std::string::npos);
   EXPECT_EQ(MemoryLimit({std::uint64_t(3) << 30, MemoryLimit::Source::cgroup}).describe(),
             "its cgroup allows 3.0 GiB (memory.max)");
   EXPECT_EQ(MemoryLimit({std::uint64_t(5) << 20, MemoryLimit::Source::data_segment}).describe(),
@@ -303,7 +304,7 @@ TEST(Memory, ASceneIsRefusedBeforeBuildingWithTheFigures) {
   const auto r = run_command(std::string(STAGE3_EXE) + " --scene " + (dir / "bunnies.json").string() + " --out " +
                                  (dir / "x.png").string(),
                              dir);
-  expect_one_line_error(r, 1, "bunnies.json: its 6945100000 triangles need about 1.6 TiB of memory");
+  expect_one_line_error(r, 1, "bunnies.json: the render needs about 1.6 TiB of memory (6945100000 triangles");
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
@@ -342,14 +343,38 @@ TEST(Memory, AnAddressSpaceLimitIsHonouredWithTheFigures) {
   auto r = run_command(limited + STAGE3_EXE + " --scene " + source_path("assets/scenes/bunnies.json").string() + " --out " +
                            (dir / "x.png").string(),
                        dir);
-  expect_one_line_error(r, 1, "bunnies.json: its 1111216 triangles need about");
+  expect_one_line_error(r, 1, "bunnies.json: the render needs about");
+  EXPECT_NE(r.err.find("(1111216 triangles at 256 bytes each"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("this process may use 195.3 MiB (ulimit -v)"), std::string::npos) << r.err;
   r = run_command(limited + STAGE1_EXE + " --scene " + source_path("assets/scenes/spheres.json").string() +
                       " --width 8000 --height 8000 --out " + (dir / "x.png").string(),
                   dir);
-  expect_one_line_error(r, 1, "x.png: a 8000x8000 image needs 1.4 GiB of memory");
+  expect_one_line_error(r, 1, "x.png: a 8000x8000 image needs 4.8 GiB of memory");
   EXPECT_NE(r.err.find("(ulimit -v)"), std::string::npos) << r.err;
+  // Found by trying: stage 6 counted every method at the image's bytes a pixel, and light tracing,
+  // BDPT and SPPM failed after seconds of work with no figure. Here the image alone fits (110 MiB),
+  // light tracing's splats do not (198 MiB), nor do SPPM's 1.1 * 10^6 photons a pass (201 MiB).
+  const std::string cornell = STAGE6_EXE + std::string(" --scene ") + source_path("assets/scenes/cornell-box.json").string();
+  r = run_command(limited + cornell + " --method lt --width 1200 --height 1200 --out " + (dir / "x.png").string(), dir);
+  expect_one_line_error(r, 1, "the image with lt's splats, 144 bytes a pixel), and this process may use 195.3 MiB");
+  r = run_command(limited + cornell + " --method pt --width 1200 --height 1200 --spp 1 --out " + (dir / "pt.png").string(),
+                  dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;  // the path tracer needs the image alone
+  r = run_command(limited + cornell + " --method sppm --width 64 --height 64 --photons 1100000 --out " +
+                      (dir / "y.png").string(), dir);
+  expect_one_line_error(r, 1, "and 1100000 photons a pass at 192 bytes each), and this process may use 195.3 MiB");
+  // Found by trying: a valid 8192^2 PNG under ulimit -v 1G was "broken image (outofmem)". Its size
+  // is checked against the memory first (the header alone is enough: no pixel is decoded).
+  std::string png = "\x89PNG\r\n\x1a\n" + std::string("\0\0\0\x0dIHDR\0\0\x20\0\0\0\x20\0\x08\x02\0\0\0", 21);
+  testing::write_text(dir / "big.png", png + std::string(64, '\0'));
+  testing::write_text(dir / "textured.json", R"({"camera": {"position": [0, 0, -5], "look_at": [0, 0, 0], "vfov": 30},
+    "materials": {"m": {"albedo": {"file": "big.png"}}},
+    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})");
+  r = run_command(limited + STAGE4_EXE + " --scene " + (dir / "textured.json").string() + " --out " +
+                      (dir / "z.png").string(), dir);
+  expect_one_line_error(r, 1, "big.png: a 8192x8192 texture needs 1.5 GiB of memory to decode, and this process may use");
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "y.png"));
 }
 
 }  // namespace

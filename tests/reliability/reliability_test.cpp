@@ -141,13 +141,14 @@ TEST(HostileFiles, BrokenScenesAndMeshesAreOneLineAndWriteNothing) {
 
 TEST(ImageSize, RefusedBeforeAnythingIsAllocatedWithTheFigure) {
   const MemoryLimit eight_gib{std::uint64_t(8) << 30, MemoryLimit::Source::machine};
-  EXPECT_NO_THROW(check_image_fits("a.png", 16384, 16384, eight_gib));  // 6 GiB
+  EXPECT_NO_THROW(check_image_fits("a.png", 8192, 13107, eight_gib));  // 8 GiB less 128 KiB: fits
+  EXPECT_THROW(check_image_fits("a.png", 8192, 13108, eight_gib), InputError);  // 8 GiB and 512 KiB: does not
   try {
     check_image_fits("a.png", 40000, 50000, eight_gib);
     ADD_FAILURE() << "a 40000x50000 image fits in 8 GiB";
   } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "a.png: a 40000x50000 image needs 44.7 GiB of memory (the radiance and the encoded "
-                           "file), and this machine has 8.0 GiB");
+    EXPECT_STREQ(e.what(), "a.png: a 40000x50000 image needs 149.0 GiB of memory (its sample sums, the image and "
+                           "the encoded file), and this machine has 8.0 GiB");
   }
   EXPECT_THROW(check_image_fits("a.png", 1 << 20, 1 << 20, MemoryLimit{~std::uint64_t(0), MemoryLimit::Source::machine}),
                InputError);  // 2^40 pixels
@@ -162,7 +163,7 @@ TEST(ImageSize, EveryProgramRefusesAnImageLargerThanTheMachine) {
     const auto r2 = testing::run_command(std::string(program) + " --scene " + source_path("assets/scenes/spheres.json").string() +
                                              " --width 40000 --height 50000 --out " + (dir / "big.png").string(), dir);
     if (physical_memory_bytes() < std::uint64_t(40000) * 50000 * kBytesPerPixel) {
-      testing::expect_one_line_error(r2, 1, "image needs 44.7 GiB of memory");
+      testing::expect_one_line_error(r2, 1, "image needs 149.0 GiB of memory");
       EXPECT_NE(r2.err.find("this machine has"), std::string::npos) << r2.err;
     }
     EXPECT_FALSE(std::filesystem::exists(dir / "big.png")) << program;
