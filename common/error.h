@@ -7,15 +7,18 @@
 
 namespace rt {
 
+std::string printable(std::string_view text);
+
 // Bad input: a malformed scene or image file, an unwritable output. Exit code 1.
-// The message is one line that names the file and the problem.
+// The message is one line that names the file and the problem. It is made printable (below) when
+// the error is made: what() is a C string, so a NUL byte quoted from a file would cut it there.
 struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  explicit InputError(const std::string& message) : std::runtime_error(printable(message)) {}
 };
 
-// Bad usage: unknown flags, impossible parameters. Exit code 2.
+// Bad usage: unknown flags, impossible parameters. Exit code 2. Printable as InputError is.
 struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  explicit UsageError(const std::string& message) : std::runtime_error(printable(message)) {}
 };
 
 // A run stopped by SIGINT, SIGTERM or SIGHUP (common/interrupt.h): after its partial image was

@@ -107,6 +107,11 @@ std::string scene_fingerprint(const fs::path& scene_file, const SceneDescription
 
 fs::path batch_sum_path(const fs::path& json_path) { return with_suffix(json_path, ".sum.pfm"); }
 fs::path batch_count_path(const fs::path& json_path) { return with_suffix(json_path, ".count.pfm"); }
+fs::path written_location(const fs::path& json_path) {
+  std::error_code ec;
+  const fs::path real = fs::weakly_canonical(fs::absolute(json_path, ec), ec);
+  return ec ? json_path : real;
+}
 bool is_batch_path(const fs::path& path) { return path.extension() == ".json"; }
 
 std::string format_rect(const PixelRect& r) {
@@ -280,7 +285,7 @@ SampleBatch read_sample_batch(const fs::path& json_path) {
   batch.interrupted = interrupted.get<bool>();
 
   // The images: beside the description, of the window's size, the very files it was written with.
-  const fs::path folder = json_path.parent_path();
+  const fs::path folder = written_location(json_path).parent_path();
   auto load = [&](const char* name_key, const char* hash_key) {
     const fs::path image_path = folder / in.text(d, name_key);
     const std::string bytes = read_input_file(image_path, "sample batch image", kMaxPfmFileBytes);

@@ -77,6 +77,9 @@ std::string scene_fingerprint(const std::filesystem::path& scene_file, const Sce
 // The batch files that belong to a description NAME.json: NAME.sum.pfm and NAME.count.pfm.
 std::filesystem::path batch_sum_path(const std::filesystem::path& json);
 std::filesystem::path batch_count_path(const std::filesystem::path& json);
+// Where a description was written, links followed: its images lie beside it there, so that a folder
+// of links to batches (gathered from several machines' outputs) merges.
+std::filesystem::path written_location(const std::filesystem::path& json);
 
 // True for a path ending in ".json": a stage program's --out that asks for a batch.
 bool is_batch_path(const std::filesystem::path& path);

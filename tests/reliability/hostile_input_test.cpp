@@ -235,6 +235,16 @@ TEST(ObjNumbers, TooSmallForFloatIsZeroTooLargeIsRefused) {
   EXPECT_NO_THROW(parse_obj("v 0 0 3.4e38\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "m.obj"));
 }
 
+// Found by trying: a NUL byte in an OBJ vertex cut the message there (what() is a C string).
+// Every message is made printable when its error is made, the NUL escaped with the rest of it.
+TEST(Messages, ANulByteQuotedFromAFileIsEscapedNotTheEndOfTheMessage) {
+  const char text[] = "v 0 0 0\nv 1 0\0x 0\nv 0 1 0\nf 1 2 3\n";
+  const std::string obj(text, sizeof text - 1);
+  EXPECT_EQ(error_message([&] { parse_obj(obj, "m.obj"); }),
+            "m.obj:2: vertex needs three finite coordinates, got '0\\x00x'");
+  EXPECT_STREQ(UsageError(std::string("a\0b\nc", 5)).what(), "a\\x00b\\nc");
+}
+
 TEST(Messages, AScenesSizeIsQuotedAsGivenWhenFloatLosesIt) {
   EXPECT_NE(error_message([] {
               parse_scene(scene_with(R"("m": {})", R"({"type": "sphere", "center": [0, 0, 0], "radius": 1e-50, "material": "m"})"), "s.json");

@@ -161,6 +161,27 @@ TEST_F(MergeProgram, MissingOrDuplicatedBatchesAreOneLineErrors) {
   EXPECT_FALSE(std::filesystem::exists(dir / "out.pfm"));  // nothing written by a refused merge
 }
 
+// Found by trying: a folder of links to batches failed ("cannot open sample batch image"), the
+// images looked up beside the link instead of beside the description it names. And an --out
+// naming one of those images, reached through the link, must still be refused.
+TEST_F(MergeProgram, LinksToBatchesMergeAndTheirImagesAreInputs) {
+  std::filesystem::create_directories(dir / "links");
+  std::string links;
+  for (int i = 0; i < 3; ++i) {
+    std::filesystem::create_symlink(dir / batch_name(i), dir / "links" / batch_name(i));
+    links += " " + (dir / "links" / batch_name(i)).string();
+  }
+  const auto merged = run_merge(links);
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  const auto direct = run_command(merge("--out " + (dir / "direct.pfm").string() + " " + batch(0) + " " + batch(1) +
+                                        " " + batch(2)), dir);
+  ASSERT_EQ(direct.exit_code, 0) << direct.err;
+  EXPECT_EQ(testing::read_text(dir / "out.pfm"), testing::read_text(dir / "direct.pfm"));
+  const std::string sum = (dir / "b0.sum.pfm").string(), before = testing::read_text(dir / "b0.sum.pfm");
+  expect_one_line_error(run_command(merge("--out " + sum + links), dir), 2, "would overwrite the input");
+  EXPECT_EQ(testing::read_text(dir / "b0.sum.pfm"), before);
+}
+
 TEST_F(MergeProgram, BatchesOfAnotherSceneSeedOrSizeAreRefused) {
   auto render_other = [&](const char* name, const char* scene, const char* size_and_seed) {
     const auto r = run_command(

@@ -67,7 +67,8 @@ void run(const std::string& out, const std::optional<int>& spp, bool partial, co
   const std::vector<SampleBatch> batches = read_batches(inputs);
   std::vector<std::string> read;  // every file merge reads: writing one of them would destroy it
   for (const SampleBatch& b : batches)
-    read.insert(read.end(), {b.file.string(), batch_sum_path(b.file).string(), batch_count_path(b.file).string()});
+    read.insert(read.end(), {b.file.string(), batch_sum_path(written_location(b.file)).string(),
+                             batch_count_path(written_location(b.file)).string()});
   if (reference) read.push_back(*reference);
   require_outputs_spare_inputs(outputs_of(out), read);
   // The merged image is held whole: refuse, with the figures, one this machine could not hold.
