@@ -300,9 +300,8 @@ void StageFlags::add_switch(const std::string& name, bool& value, const std::str
   if (!needs.empty()) option->needs(app_.get_option(needs));
 }
 
-void StageFlags::add_max_depth(CommonOptions& options) {
-  app_.add_option("--max-depth", options.max_depth,
-                  "Recursion depth limit: bounces followed before a path stops (default: the scene's)")
+void StageFlags::add_max_depth(CommonOptions& options, const std::string& limits) {
+  app_.add_option("--max-depth", options.max_depth, "Depth limit: " + limits + " (default: the scene's max_depth)")
       ->transform(decimal(0, 1000));
 }
 

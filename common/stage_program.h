@@ -63,8 +63,10 @@ class StageFlags {
   }
   // A switch without a value; `needs`: a switch it may only come with.
   void add_switch(const std::string& name, bool& value, const std::string& help, const std::string& needs = "");
-  // --max-depth, for the stage programs that follow rays recursively (stage 2 on).
-  void add_max_depth(CommonOptions& options);
+  // --max-depth, for the stage programs that follow rays recursively (stage 2 on); `limits` says
+  // what it limits there, for --help. A method whose paths end by Russian roulette alone has no
+  // depth to limit and refuses the flag (stages 5 and 6).
+  void add_max_depth(CommonOptions& options, const std::string& limits);
 
   // After parsing: the enums take the numbers their words were read as.
   void write_back() const {

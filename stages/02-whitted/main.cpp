@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
   return run_stage_program(
       argc, argv, "stage2", "Stage 2: Whitted-style ray tracing: mirrors, glass, shadows, meshes", options,
       [&](StageFlags& flags) {
-        flags.add_max_depth(options);
+        flags.add_max_depth(options, "the mirror and glass bounces a ray is followed through");
         flags.add_word("--debug", debug_name, {"none", "normal", "depth", "albedo"},
                        "Debug view instead of shading: none, normal (shading normal), depth, albedo");
         flags.add_choice("--fresnel", whitted.fresnel, {{"exact", FresnelModel::exact}, {"schlick", FresnelModel::schlick}},

@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
   return run_stage_program(
       argc, argv, "stage3", "Stage 3: Whitted ray tracing over a bounding volume hierarchy", options,
       [&](StageFlags& flags) {
-        flags.add_max_depth(options);
+        flags.add_max_depth(options, "the mirror and glass bounces a ray is followed through");
         flags.add_word("--accel", accel_name, {"naive", "median", "middle", "sah"},
                        "Acceleration structure: naive (every primitive), median, middle or sah");
         flags.add("--leaf-size", leaf_size, "Largest leaf a BVH builder makes without trying to split",

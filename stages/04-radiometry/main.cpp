@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
   return run_stage_program(
       argc, argv, "stage4", "Stage 4: direct lighting by Monte Carlo integration of the reflection equation", options,
       [&](StageFlags& flags) {
-        flags.add_max_depth(options);
+        flags.add_max_depth(options, "the mirror and glass bounces followed to a surface that is lit");
         flags.add_choice("--estimator", direct.estimator,
                          {{"uniform", DirectEstimator::uniform_hemisphere},
                           {"cosine", DirectEstimator::cosine_hemisphere},

@@ -24,7 +24,9 @@ int main(int argc, char** argv) {
   return run_stage_program(
       argc, argv, "stage5", "Stage 5: Monte Carlo path tracing", options,
       [&](StageFlags& flags) {
-        flags.add_max_depth(options);
+        flags.add_max_depth(options,
+                            "the bounces of --integrator naive (rr, nee and mis end paths by Russian roulette "
+                            "and refuse it)");
         std::vector<std::pair<std::string, PathIntegrator>> integrators;
         for (const PathIntegrator i : kPathIntegrators) integrators.emplace_back(integrator_name(i), i);
         flags.add_choice("--integrator", path.integrator, integrators,
@@ -48,6 +50,9 @@ int main(int argc, char** argv) {
                   "Also write a PNG heat map of the paths each pixel took (black: none, pale yellow: --spp)");
       },
       [&] {
+        if (options.max_depth && path.integrator != PathIntegrator::naive)
+          throw UsageError(std::string("--max-depth: --integrator ") + integrator_name(path.integrator) +
+                           " ends paths by Russian roulette, with no depth to limit; the depth is naive's");
         if (adaptive_tolerance && (options.sample_range || is_batch_path(options.out)))
           throw UsageError("--adaptive: each pixel stops where its own samples say, so batches of one render "
                            "cannot be rendered apart and merged; render the image in one run");

@@ -33,7 +33,9 @@ int main(int argc, char** argv) {
   return run_stage_program(
       argc, argv, "stage6", "Stage 6: light transport beyond path tracing", options,
       [&](StageFlags& flags) {
-        flags.add_max_depth(options);
+        flags.add_max_depth(options,
+                            "sppm: the mirror and glass bounces to a pixel's visible point (pt, lt and bdpt end "
+                            "paths by Russian roulette and refuse it)");
         std::vector<std::pair<std::string, TransportMethod>> methods;
         for (const TransportMethod m : kTransportMethods) methods.emplace_back(method_name(m), m);
         flags.add_choice("--method", transport.method, methods,
@@ -53,6 +55,10 @@ int main(int argc, char** argv) {
                   "Bounces before Russian roulette may end a subpath (default 4)", decimal_in(0, 1000));
       },
       [&] {
+        if (options.max_depth && transport.method != TransportMethod::sppm)
+          throw UsageError(std::string("--max-depth: --method ") + method_name(transport.method) +
+                           " ends paths by Russian roulette, with no depth to limit; the depth is sppm's, through "
+                           "mirrors and glass to a pixel's visible point");
         const bool splits = transport.method != TransportMethod::pt;
         if (splits && (options.sample_range || options.crop || is_batch_path(options.out)))
           throw UsageError(std::string("--method ") + method_name(transport.method) +

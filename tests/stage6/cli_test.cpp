@@ -100,6 +100,11 @@ TEST(Stage6Cli, WhatAMethodCannotRenderIsOneLine) {
       {kCornell + " --method sppm --alpha 0", 2, "--alpha"},
       {kCornell + " --method sppm --alpha 1.5", 2, "--alpha"},
       {kCornell + " --method sppm --radius -1", 2, "--radius"},
+      // Found by trying: --max-depth changed nothing in lt and bdpt (nor in pt), whose paths end by
+      // Russian roulette alone.
+      {kCornell + " --method bdpt --max-depth 2", 2, "--max-depth: --method bdpt ends paths by Russian roulette"},
+      {kCornell + " --method lt --max-depth 16", 2, "--max-depth: --method lt ends paths by Russian roulette"},
+      {kCornell + " --method pt --max-depth 1000", 2, "--max-depth: --method pt ends paths by Russian roulette"},
       {kCornell + " --method bdpt --crop 0:4,0:4", 2, "cannot be rendered in batches or windows"},
       {kCornell + " --method lt --sample-range 0:1", 2, "cannot be rendered in batches or windows"},
       {kCornell + " --method bdpt --filter gaussian", 2, "--filter: lt, bdpt and sppm use the box filter"},
@@ -120,6 +125,7 @@ TEST(Stage6Cli, WhatAMethodCannotRenderIsOneLine) {
   for (const std::string& scene : {scene_flag("cornell-box-point-light.json"), lens_scene})
     EXPECT_EQ(run_command(stage6(scene + " --method pt --spp 4" + out), dir).exit_code, 0) << scene;
   EXPECT_EQ(run_command(stage6(lens_scene + " --method sppm --spp 2 --photons 1000" + out), dir).exit_code, 0);
+  EXPECT_EQ(run_command(stage6(kCornell + " --method sppm --max-depth 2 --spp 1 --photons 1000" + out), dir).exit_code, 0);
 }
 
 TEST(Stage6Cli, CtrlCKeepsWhatWasRendered) {
