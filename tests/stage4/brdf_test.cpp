@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 namespace rt {
 namespace {
 
@@ -222,6 +224,49 @@ TEST(BrdfProperties, NothingBelowTheSurface) {
     EXPECT_EQ(brdf.pdf(direction(0.3f), direction(2.0f)), 0.0f) << name;
     EXPECT_FALSE(brdf.sample(direction(2.0f), Vec2(0.3f), 0.5f)) << name;
   }
+}
+
+// The exact boundary the contracts name: a direction lying in the tangent plane (z = +0 or -0) is
+// not above the surface. There a model returns exactly 0, never the 0/0 of a cosine in a
+// denominator (the microfacet model divides by 4 cos_i cos_o): "<=" written as "<" survived every
+// test that only looked above or below. Just above it, the smallest positive z, everything is finite.
+TEST(BrdfProperties, ExactlyInTheHorizonIsZeroAndJustAboveIsFinite) {
+  const float tiny = std::numeric_limits<float>::denorm_min();
+  for (const auto& [name, brdf] : glossy_models())
+    for (const float z : {0.0f, -0.0f}) {
+      const Vec3 horizon(1.0f, 0.0f, z), up = direction(0.4f, 2.0f);
+      EXPECT_EQ(brdf.eval(up, horizon), Color(0.0f)) << name << ", wi in the horizon";
+      EXPECT_EQ(brdf.eval(horizon, up), Color(0.0f)) << name << ", wo in the horizon";
+      EXPECT_EQ(brdf.eval(horizon, horizon), Color(0.0f)) << name << ", both";
+      EXPECT_EQ(brdf.pdf(up, horizon), 0.0f) << name;
+      EXPECT_EQ(brdf.pdf(horizon, up), 0.0f) << name;
+      EXPECT_FALSE(brdf.sample(horizon, Vec2(0.3f, 0.7f), 0.5f)) << name << ": no sample from the horizon";
+      const Vec3 grazing(1.0f, 0.0f, tiny);
+      const Color f = brdf.eval(up, grazing);
+      EXPECT_TRUE(is_finite(f) && min_component(f) >= 0.0f) << name;
+      EXPECT_TRUE(std::isfinite(brdf.pdf(up, grazing))) << name;
+    }
+}
+
+// A delta lobe (mirror, glass) is reached only by sampling it: its eval and pdf are exactly 0 for
+// every pair of directions, its own reflection and refraction included. BDPT relies on it: a
+// connection to a delta vertex returns before any evaluation, and where it did not (the guard's
+// "||" written as "&&"), the value would still be 0 (grading/equivalent-mutants.json).
+TEST(DeltaLobes, EvalAndPdfAreZeroForEveryPairOfDirections) {
+  const std::pair<const char*, Bsdf> models[] = {{"mirror", Bsdf(MirrorBrdf{Color(0.9f)})},
+                                                 {"glass entered", Bsdf(DielectricBsdf{1.0f, 1.5f})},
+                                                 {"glass left", Bsdf(DielectricBsdf{1.5f, 1.0f})}};
+  for (const auto& [name, bsdf] : models)
+    for (int i = 0; i < 12; ++i)
+      for (int j = 0; j < 12; ++j) {
+        const Vec3 wo = direction(0.27f * float(i), 0.5f * float(j)), wi = direction(0.27f * float(j), 0.9f * float(i));
+        EXPECT_EQ(bsdf.eval(wo, wi), Color(0.0f)) << name;
+        EXPECT_EQ(bsdf.pdf(wo, wi), 0.0f) << name;
+        if (const auto s = bsdf.sample(wo, Vec2(0.5f), 0.3f)) {
+          EXPECT_EQ(bsdf.eval(wo, s->wi), Color(0.0f)) << name << ": its own sample";
+          EXPECT_EQ(bsdf.pdf(wo, s->wi), 0.0f) << name;
+        }
+      }
 }
 
 // A caller draws the lobe number only for a model that says it reads it (the path tracer saves a

@@ -156,6 +156,33 @@ TEST(DirectDelta, EveryEstimatorSeesALightInAMirror) {
   }
 }
 
+// The exact boundary of light sampling's contract: a sample whose density is exactly 0 contributes
+// nothing. Here the density is 0 while the light is bright and in view: the shading point lies
+// 10^-20 in front of the corner of a quad light 1000 units wide, which u = (0, 0) picks, so
+// p_A d^2 / cos = 10^-6 * 10^-40 underflows to 0 and Le f cos / p would be infinite. "pdf > 0" written as "pdf >= 0" survived every test
+// until this one; a pdf of 0 elsewhere (a point behind the light) comes with Le = 0 as well.
+TEST(DirectRobustness, ALightSampleOfDensityZeroContributesNothing) {
+  const std::string json = R"({"camera": {"position": [3, 1, 0], "look_at": [0, 0, 0], "vfov": 40},
+    "materials": {"light": {"emission": [4, 4, 4]}},
+    "shapes": [{"type": "quad", "material": "light", "vertices": [[0, 0, 0], [0, 0, 1000], [1000, 0, 1000], [1000, 0, 0]]}]})";
+  const LightingScene scene(parse_scene(json, "corner.json"));
+  ASSERT_EQ(scene.emitters().size(), 1u);
+  Hit hit;
+  hit.point = Vec3(0.0f, 1e-20f, 0.0f);
+  hit.normal = hit.shading_normal = Vec3(0.0f, -1.0f, 0.0f);  // facing the light below it
+  const Frame frame = Frame::from_normal(hit.normal);
+  const ShadingPoint at{hit, Bsdf(LambertBrdf{Color(0.5f)}), frame, Vec3(0.0f, 0.0f, 1.0f)};
+  const AreaEmitter& light = scene.emitters()[0];
+  ASSERT_GT(max_component(light.radiance_towards(Vec3(0.0f), hit.point)), 0.0f) << "the light faces the point";
+  ASSERT_EQ(light.sample(hit.point, Vec2(0.0f)).pdf, 0.0f) << "the density underflows to exactly 0";
+  const DirectLightSample sample = sample_direct_light(scene, at, 0.5f, Vec2(0.0f), OffsetPolicy{});
+  EXPECT_EQ(sample.value, Color(0.0f));
+  // Just off the boundary the same light is sampled as usual: finite and lit.
+  const DirectLightSample near = sample_direct_light(scene, at, 0.5f, Vec2(0.5f), OffsetPolicy{});
+  EXPECT_TRUE(is_finite(near.value));
+  EXPECT_GT(near.pdf, 0.0f);
+}
+
 TEST(DirectRobustness, GrazingAndCornerRaysStayFinite) {
   const LightingScene scene = floor_scene(R"({"type": "microfacet", "specular": [0.9, 0.9, 0.9], "roughness": 0.01})",
                                           R"({"type": "sphere", "material": "light", "center": [0, 0.5, 0], "radius": 0.5},

@@ -136,6 +136,11 @@ TEST(ImportanceCorrection, GlassRefractionCarriesFluxUnsqueezed) {
                          (std::abs(wo.z) * std::abs(glm::dot(wi, tilted.hit.shading_normal)));
   EXPECT_NEAR(importance_correction(tilted, wo, wi, diffuse), expected, 1e-5f);
   EXPECT_NE(expected, 1.0f);
+  // Only the cosines' magnitudes enter (Veach's thesis, eq. 5.19), so the factor is the same
+  // whichever way either direction points: a walk that hands it the incoming ray's direction in
+  // place of the way back (a flipped sign) computes the same factor, and no image can tell.
+  EXPECT_EQ(importance_correction(tilted, -wo, wi, diffuse), importance_correction(tilted, wo, wi, diffuse));
+  EXPECT_EQ(importance_correction(tilted, wo, -wi, diffuse), importance_correction(tilted, wo, wi, diffuse));
 }
 
 // A full path x_0 (camera) ... x_k (on a light), each vertex with its density from either side.
