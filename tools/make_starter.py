@@ -32,7 +32,7 @@ import sys
 import task_regions
 
 INSTRUCTOR_ONLY = ("tests/hidden/", "tests/grading/", ".ci/", "grading/references/", "tools/mutation.py",
-                   "grading/equivalent-mutants.json")
+                   "grading/equivalent-mutants.json", "tools/check_references.py")
 
 
 def parse_stages(text):

@@ -12,8 +12,11 @@ tasks left as placeholders (what an honest student who did not do them hands in)
 | stage1.camera.ray         | leaves a detached process that forges results.json seconds later     |
 | stage1.sphere.*           | sphere_intersection.cpp is a link to the grader's own solution file  |
 
-plus a CMakeLists.txt that runs a command at configure time and a tests/CMakeLists.txt that drops
-the failing tests and adds forged passing ones. The tasks are chosen so that every test reaching
+plus a CMakeLists.txt that runs a command at configure time, a tests/CMakeLists.txt that drops
+the failing tests and adds forged passing ones, and headers that the stage's tests include
+(stages/01-ray-casting/render.h, camera_rays.h) redefining GoogleTest's EXPECT_* and ASSERT_* to
+pass: when render.h held a task, the grader took it from the submission and those tests passed with
+genuine reports (16 of 53 points). Tasks live only in .cpp files now, and no header is taken. The tasks are chosen so that every test reaching
 their code fails with the placeholder too, so the two trees must agree test by test: what the
 hostile code steals is then exactly what the comparison would show. Submission B is the starter tree with the render
 checks' references replaced by its own renders (and the same build files), beside the starter.
@@ -55,11 +58,21 @@ def honest_tree(destination):
         replace_solution(destination / STAGE1 / file, task, [])
 
 
+# What a header a test includes could do to the test's own assertions: make every one of them pass.
+FORGED_ASSERTIONS = "".join(f"#undef {kind}_{what}\n#define {kind}_{what}(...) if (true) {{}} else std::cerr\n"
+                            for kind in ("EXPECT", "ASSERT")
+                            for what in ("TRUE", "FALSE", "EQ", "NE", "LT", "LE", "GT", "GE", "NEAR", "FLOAT_EQ"))
+
+
 def hostile_build_files(tree, marker):
-    """A CMakeLists.txt that runs a command while cmake configures (it must never run), and a
-    tests/CMakeLists.txt that drops stage 1's tests and forges passing ones in their place."""
+    """A CMakeLists.txt that runs a command while cmake configures (it must never run), a
+    tests/CMakeLists.txt that drops stage 1's tests and forges passing ones in their place, and
+    stage 1's headers turned into ones that make every assertion after them pass."""
     with open(tree / "CMakeLists.txt", "a") as out:
         out.write(f'\nexecute_process(COMMAND touch "{marker}")\n')
+    for header in ("render.h", "camera_rays.h"):
+        path = tree / STAGE1 / header
+        path.write_text(path.read_text() + "\n#include <gtest/gtest.h>\n#include <iostream>\n" + FORGED_ASSERTIONS)
     tests = tree / "tests" / "CMakeLists.txt"
     forged = "".join(f"add_test(NAME {name} COMMAND true)\nset_tests_properties({name} PROPERTIES LABELS stage1)\n"
                      for name in ("Plane.BehindTheOriginIsNotHit", "Torus.RayThroughTheHoleMisses",
