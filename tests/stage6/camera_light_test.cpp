@@ -64,6 +64,22 @@ TEST(ProjectToFilm, TheFilmsFarEdgeBelongsToNoPixel) {
   EXPECT_FALSE(project_to_film(camera, Vec3(0.0f, -1.0f, 1.0f)));  // film y = 2 = height
 }
 
+// The other edge is the film's: film x or y exactly 0 is pixel 0 ("x > 0" survived every test
+// above). The points are built from the camera's own factors, so the projection gives exactly 0.
+TEST(ProjectToFilm, TheFilmsNearEdgeBelongsToTheFirstPixel) {
+  CameraSpec spec;
+  spec.vfov_degrees = 90.0f;
+  const Camera camera(spec, 3, 2);
+  ASSERT_EQ(camera.right, Vec3(-1.0f, 0.0f, 0.0f));  // looking down +z, +x on the left
+  ASSERT_EQ(camera.up, Vec3(0.0f, 1.0f, 0.0f));
+  const std::optional<Vec2> left = project_to_film(camera, Vec3(camera.aspect * camera.tan_half_vfov, 0.0f, 1.0f));
+  ASSERT_TRUE(left) << "film x = 0 is on the film";
+  EXPECT_EQ(left->x, 0.0f);
+  const std::optional<Vec2> top = project_to_film(camera, Vec3(0.0f, camera.tan_half_vfov, 1.0f));
+  ASSERT_TRUE(top) << "film y = 0 is on the film";
+  EXPECT_EQ(top->y, 0.0f);
+}
+
 // The importance integrates to 1 over the film's directions, weighted by the projected solid
 // angle: a uniform radiance 1 makes an image of 1 (We normalizes the whole film).
 TEST(CameraImportance, IntegratesToOneOverTheFilm) {
