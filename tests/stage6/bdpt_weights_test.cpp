@@ -8,9 +8,13 @@
 #include "06-light-transport/light_emission.h"
 
 #include "stage6/loaded_scene.h"
+#include "support/glowing_room.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
 
 namespace rt {
 namespace {
@@ -113,6 +117,33 @@ TEST(RandomWalk, ThroughputIsTheProductOfTheSamplingWeights) {
     }
   }
   EXPECT_GT(vertices, 300u);  // 50 camera and 50 light subpaths of up to 6 vertices: most go deep
+}
+
+// Russian roulette starts after settings.roulette_start bounces, as in stage 5. In a closed room
+// of albedo 0.5 no walk leaves the scene, so before roulette none ends, and at its first chance,
+// after `start` bounces of weight 0.5, a walk survives with probability 0.5^start
+// (survival_probability): with roulette_start 2 the shortest camera subpaths have exactly three
+// vertices (the camera and two hits), and 3/4 of them are that short. A roulette started a bounce
+// early or late moves that shortest length; the image's expectation does not tell, roulette being
+// unbiased.
+TEST(RandomWalk, RouletteStartsAfterRouletteStartBounces) {
+  static const LoadedScene room(parse_scene(testing::kGlowingRoom, "glowing-room.json"), 8, 8);
+  for (const int start : {1, 2, 4}) {
+    WalkSettings walk;
+    walk.roulette_start = start;
+    std::map<size_t, int> lengths;
+    for (std::uint64_t k = 0; k < 400; ++k) {
+      Rng rng(91, 0, k);
+      const Ray ray = generate_camera_ray(room.camera, Vec2(rng.uniform() * 8.0f, rng.uniform() * 8.0f));
+      std::vector<PathVertex> path{camera_vertex(room.camera)};
+      random_walk(room.scene, ray, Color(1.0f), camera_direction_pdf(room.camera, ray.direction), walk, rng, path);
+      ++lengths[path.size()];
+    }
+    EXPECT_EQ(lengths.begin()->first, size_t(start + 1)) << "roulette_start " << start << ": the shortest walk";
+    const double survive = std::pow(0.5, start);
+    EXPECT_NEAR(lengths.begin()->second, 400.0 * (1.0 - survive), 5.0 * std::sqrt(400.0 * survive * (1.0 - survive)))
+        << "roulette_start " << start << ": the walks that end at the first roulette";
+  }
 }
 
 TEST(ImportanceCorrection, GlassRefractionCarriesFluxUnsqueezed) {
