@@ -125,25 +125,38 @@ TEST(RandomWalk, ThroughputIsTheProductOfTheSamplingWeights) {
 // (survival_probability): with roulette_start 2 the shortest camera subpaths have exactly three
 // vertices (the camera and two hits), and 3/4 of them are that short. A roulette started a bounce
 // early or late moves that shortest length; the image's expectation does not tell, roulette being
-// unbiased.
+// unbiased. The light subpaths the same: their throughput starts at the emitted flux, and it is the
+// throughput relative to that start that roulette reads.
 TEST(RandomWalk, RouletteStartsAfterRouletteStartBounces) {
   static const LoadedScene room(parse_scene(testing::kGlowingRoom, "glowing-room.json"), 8, 8);
-  for (const int start : {1, 2, 4}) {
-    WalkSettings walk;
-    walk.roulette_start = start;
-    std::map<size_t, int> lengths;
-    for (std::uint64_t k = 0; k < 400; ++k) {
-      Rng rng(91, 0, k);
-      const Ray ray = generate_camera_ray(room.camera, Vec2(rng.uniform() * 8.0f, rng.uniform() * 8.0f));
-      std::vector<PathVertex> path{camera_vertex(room.camera)};
-      random_walk(room.scene, ray, Color(1.0f), camera_direction_pdf(room.camera, ray.direction), walk, rng, path);
-      ++lengths[path.size()];
+  for (const bool light : {false, true})
+    for (const int start : {1, 2, 4}) {
+      WalkSettings walk;
+      walk.roulette_start = start;
+      walk.mode = light ? Transport::importance : Transport::radiance;
+      std::map<size_t, int> lengths;
+      for (std::uint64_t k = 0; k < 400; ++k) {
+        Rng rng(91, 0, k);
+        std::vector<PathVertex> path;
+        if (light) {
+          const std::optional<LightSubpathStart> s = start_light_subpath(room.scene, rng, walk.offset);
+          ASSERT_TRUE(s);
+          path.push_back(s->origin);
+          random_walk(room.scene, s->ray, s->beta, s->pdf_w, walk, rng, path);
+        } else {
+          const Ray ray = generate_camera_ray(room.camera, Vec2(rng.uniform() * 8.0f, rng.uniform() * 8.0f));
+          path.push_back(camera_vertex(room.camera));
+          random_walk(room.scene, ray, Color(1.0f), camera_direction_pdf(room.camera, ray.direction), walk, rng, path);
+        }
+        ++lengths[path.size()];
+      }
+      const std::string what = std::string(light ? "light" : "camera") + " subpaths, roulette_start " +
+                               std::to_string(start);
+      EXPECT_EQ(lengths.begin()->first, size_t(start + 1)) << what << ": the shortest walk";
+      const double survive = std::pow(0.5, start);
+      EXPECT_NEAR(lengths.begin()->second, 400.0 * (1.0 - survive), 5.0 * std::sqrt(400.0 * survive * (1.0 - survive)))
+          << what << ": the walks that end at the first roulette";
     }
-    EXPECT_EQ(lengths.begin()->first, size_t(start + 1)) << "roulette_start " << start << ": the shortest walk";
-    const double survive = std::pow(0.5, start);
-    EXPECT_NEAR(lengths.begin()->second, 400.0 * (1.0 - survive), 5.0 * std::sqrt(400.0 * survive * (1.0 - survive)))
-        << "roulette_start " << start << ": the walks that end at the first roulette";
-  }
 }
 
 TEST(ImportanceCorrection, GlassRefractionCarriesFluxUnsqueezed) {
