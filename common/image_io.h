@@ -36,8 +36,8 @@ void write_image(const std::filesystem::path& path, const Image& image, const Im
 void write_output_image(const char* program, const std::filesystem::path& path, const Image& image,
                         const ImageEncoding& encoding);
 
-// The largest finite half float (IEEE 754 binary16). Beyond it a value would round to infinity, so
-// a half EXR holds it in place of anything larger in magnitude: no file ever holds an infinity.
+// The largest finite half float (IEEE 754 binary16). From 65520 on, a value rounds to infinity, so
+// a half EXR holds this in place of anything larger in magnitude: no file ever holds an infinity.
 inline constexpr float kLargestHalf = 65504.0f;
 // How many channel values of `image` lie beyond +-kLargestHalf.
 std::uint64_t count_beyond_half(const Image& image);

@@ -47,7 +47,7 @@ void check_image_fits(const std::string& out, int width, int height, const Memor
 // per triangle for stage 3's binary SAH tree, 200 for its 4-wide tree, 27 for stage 2.
 inline constexpr std::uint64_t kBytesPerTriangle = 256;
 // What a render holds besides its triangles, for check_scene_fits: its bytes, and what they are in
-// words ("the image", "the image and sppm's state: 248 bytes a pixel, ...").
+// words ("the image", "the image with sppm's state, 272 bytes a pixel, and ...").
 struct OtherMemory {
   double bytes;
   std::string what;
