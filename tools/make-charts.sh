@@ -20,7 +20,7 @@ build/release/bin/path_error_vs_time docs/charts/stage5-paths.csv  # about 15 mi
 build/release/bin/environment_sampling docs/charts/stage4-environment.csv  # about 20 s
 build/release/bin/adaptive_error_vs_time docs/charts/stage5-adaptive.csv docs/images  # about 8 minutes
 mkdir -p build/stage6-renders  # the equal-time pictures, tiled into docs/images/stage6-<scene>.png
-build/release/bin/transport_error_vs_time docs/charts/stage6-error-vs-time.csv build/stage6-renders  # about 12 minutes
+build/release/bin/transport_error_vs_time docs/charts/stage6-error-vs-time.csv build/stage6-renders  # about 8 minutes
 build/release/bin/stage4 --scene assets/scenes/textures.json --spp 64 --out docs/images/stage4-textures.png
 build/release/bin/stage5 --scene assets/scenes/environment.json --spp 256 --out docs/images/stage5-environment.png
 mkdir -p build/stage4-renders  # the four renders tiled into docs/images/stage4-estimators.png
