@@ -285,16 +285,22 @@ TEST(Interrupt, SighupStopsLikeSigterm) { expect_stops_and_writes(SIGHUP); }
 // with 2 * 10^7 photons). The stop is checked per chunk of photons and between a pass's steps: a
 // pass cut short is dropped, and a stop in the first pass writes nothing, as for every method.
 // Here a pass takes some 2.5 s (3 * 10^6 photons): 0.7 s in, the run must end within 2 s.
-TEST(Interrupt, SppmStopsInsideAPhotonPass) {
-  ScratchDir dir;
+// An SPPM render of the Cornell box at 16 x 16 with `photons` a pass, Ctrl-C `after` its start:
+// its exit status, or none if it still ran 2 s after the signal. The image goes to dir/sppm.pfm.
+std::optional<int> sppm_stopped_after(const ScratchDir& dir, const char* photons, std::chrono::milliseconds after) {
   ChildProcess child({STAGE6_EXE, "--scene", source_path("assets/scenes/cornell-box.json").string(), "--method", "sppm",
-                      "--width", "16", "--height", "16", "--spp", "100000", "--photons", "3000000", "--threads", "2",
+                      "--width", "16", "--height", "16", "--spp", "100000", "--photons", photons, "--threads", "2",
                       "--out", (dir / "sppm.pfm").string()},
                      dir / "stdout.txt", dir / "stderr.txt");
-  ASSERT_TRUE(child.started());
-  std::this_thread::sleep_for(700ms);
+  EXPECT_TRUE(child.started());
+  std::this_thread::sleep_for(after);
   child.signal(SIGINT);
-  const std::optional<int> status = child.wait_for(2000ms);
+  return child.wait_for(2000ms);
+}
+
+TEST(Interrupt, SppmStopsInsideAPhotonPass) {
+  ScratchDir dir;
+  const std::optional<int> status = sppm_stopped_after(dir, "3000000", 700ms);
   ASSERT_TRUE(status) << "still running 2 s after Ctrl-C";
   ASSERT_TRUE(WIFEXITED(*status));
   EXPECT_EQ(WEXITSTATUS(*status), 128 + SIGINT);
@@ -304,14 +310,7 @@ TEST(Interrupt, SppmStopsInsideAPhotonPass) {
 // The passes that ended before the stop are the image: finite, and lit.
 TEST(Interrupt, SppmKeepsThePassesThatEnded) {
   ScratchDir dir;
-  ChildProcess child({STAGE6_EXE, "--scene", source_path("assets/scenes/cornell-box.json").string(), "--method", "sppm",
-                      "--width", "16", "--height", "16", "--spp", "100000", "--photons", "20000", "--threads", "2",
-                      "--out", (dir / "sppm.pfm").string()},
-                     dir / "stdout.txt", dir / "stderr.txt");
-  ASSERT_TRUE(child.started());
-  std::this_thread::sleep_for(1500ms);
-  child.signal(SIGINT);
-  const std::optional<int> status = child.wait_for(2000ms);
+  const std::optional<int> status = sppm_stopped_after(dir, "20000", 1500ms);
   ASSERT_TRUE(status && WIFEXITED(*status));
   EXPECT_EQ(WEXITSTATUS(*status), 128 + SIGINT);
   const Image image = read_pfm(dir / "sppm.pfm");
