@@ -82,9 +82,18 @@ def grade(tree, stages, out, work, options):
                           options.sandbox_user)
     box.check(work)
     taken = submission.take(tree, ROOT, spec)
+    judged = spec.get("judged_programs", [])
     if options.prepared:
         times.timed("copy the prepared build", build.copy_prepared, options.prepared, work)
-    builder = build.Builder(box, work, options.jobs, deadline, seen_at=options.prepared)
+        judges = options.prepared / build.JUDGES
+    elif judged:  # the starter is built here first, for its judges; the submission's files then build on it
+        judges = work / build.JUDGES
+        if not times.timed("build the starter (the judges)", build_starter, work, stages, options, box, deadline,
+                           work / "starter.log"):
+            judges = None  # every judged test then fails: without its judge no test can pass
+    else:
+        judges = None
+    builder = build.Builder(box, work, options.jobs, deadline, seen_at=options.prepared, judges=judges, judged=judged)
     build.prepare_tree(taken, ROOT, builder.source, options.hidden)
     log = work / "build.log"
     log.write_text("")
@@ -158,24 +167,34 @@ def instructor_builder(build_dir, scratch, box):
     return builder
 
 
-def prepare(folder, options, box):
-    """Builds the instructor's tree, every task as the starter's placeholder, with every stage's
-    tests and hidden tests, into `folder` (src, build): what --prepared grades against."""
+def build_starter(folder, stages, options, box, deadline, log):
+    """Builds the instructor's tree, every task as the starter's placeholder, with the stages' tests
+    and hidden tests, into `folder` (src, build), and keeps its test programs as the judges
+    (build.py). True when it built."""
     spec = manifest.load(MANIFEST)
+    builder = build.Builder(box, folder, options.jobs, deadline)
+    build.prepare_tree(submission.starter(ROOT, spec), ROOT, builder.source, options.hidden)
+    log.write_text("")
+    built = builder.configure(log)
+    for stage in stages or sorted(spec["stages"]):
+        built = built and builder.build_stage(stage, log) and (not options.hidden or builder.build_hidden(stage, log))
+    if built:
+        build.keep_judges(builder.build, folder)
+    return built
+
+
+def prepare(folder, options, box):
+    """Builds the starter with every stage's tests and hidden tests into `folder` (src, build,
+    judges): what --prepared grades against."""
     folder = pathlib.Path(folder).resolve()
     folder.mkdir(parents=True, exist_ok=True)
     folder.chmod(0o755)
     box.check(folder)
     files.remove_tree(folder / build.PREPARED_MARK)
     start = time.monotonic()
-    builder = build.Builder(box, folder, options.jobs, sandbox.Deadline(3600))
-    build.prepare_tree(submission.starter(ROOT, spec), ROOT, builder.source, hidden=True)
     log = folder / "prepare.log"
-    log.write_text("")
-    built = builder.configure(log)
-    for stage in sorted(spec["stages"]):
-        built = built and builder.build_stage(stage, log) and builder.build_hidden(stage, log)
-    if not built:
+    options.hidden = True
+    if not build_starter(folder, None, options, box, sandbox.Deadline(3600), log):
         print(f"grade: the prepared build in {folder} failed; its log is {log}:\n{files.tail_of(log, 3000)}",
               file=sys.stderr)
         return 1

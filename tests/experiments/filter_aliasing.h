@@ -27,5 +27,8 @@ struct ZonePlateScores {
 // Renders the zone plate with stage 1's pixel loop (a size x size image, spp samples per pixel,
 // the given filter) and scores it. The plate reaches Nyquist at r_N = size / 4.
 ZonePlateScores measure_zone_plate(PixelFilterType filter, int size, int spp, std::uint64_t seed);
+// Its two halves: the render (what a graded test records) and the scores of a square render.
+Image render_zone_plate(PixelFilterType filter, int size, int spp, std::uint64_t seed);
+ZonePlateScores score_zone_plate(const Image& image);
 
 }  // namespace rt

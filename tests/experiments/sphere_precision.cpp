@@ -21,7 +21,18 @@ FarSphereRays make_far_sphere_rays(float distance, int count, std::uint64_t seed
   return setup;
 }
 
+std::vector<std::optional<float>> far_sphere_answers(SphereIntersectFn intersect, const FarSphereRays& setup) {
+  std::vector<std::optional<float>> answers;
+  answers.reserve(setup.rays.size());
+  for (const Ray& ray : setup.rays) answers.push_back(intersect(ray, setup.sphere, Interval::positive()));
+  return answers;
+}
+
 SpherePrecision measure_sphere_precision(SphereIntersectFn intersect, const FarSphereRays& setup) {
+  return measure_sphere_precision(setup, far_sphere_answers(intersect, setup));
+}
+
+SpherePrecision measure_sphere_precision(const FarSphereRays& setup, const std::vector<std::optional<float>>& answers) {
   using LD = long double;
   const LD distance = setup.sphere.center.z, r = setup.sphere.radius;
   // Rays that pass within 4 ulp(D) of the silhouette are too close to call in float.
@@ -38,7 +49,7 @@ SpherePrecision measure_sphere_precision(SphereIntersectFn intersect, const FarS
     if (std::abs(std::sqrt(rho2) - r) < band) continue;
     ++result.rays_counted;
     const bool reference_hit = rho2 < r * r;
-    const std::optional<float> t = intersect(ray, setup.sphere, Interval::positive());
+    const std::optional<float> t = answers.at(size_t(&ray - setup.rays.data()));
     if (t.has_value() != reference_hit) {
       ++wrong;
       continue;

@@ -33,5 +33,9 @@ struct SpherePrecision {
 };
 
 SpherePrecision measure_sphere_precision(SphereIntersectFn intersect, const FarSphereRays& setup);
+// The same in two halves: the formula's answers for setup.rays, in order (what a graded test
+// records), and their measure.
+std::vector<std::optional<float>> far_sphere_answers(SphereIntersectFn intersect, const FarSphereRays& setup);
+SpherePrecision measure_sphere_precision(const FarSphereRays& setup, const std::vector<std::optional<float>>& answers);
 
 }  // namespace rt

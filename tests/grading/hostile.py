@@ -11,6 +11,18 @@ tasks left as placeholders (what an honest student who did not do them hands in)
 | stage1.shading.local      | allocates without bound                                              |
 | stage1.camera.ray         | leaves a detached process that forges results.json seconds later     |
 | stage1.sphere.*           | sphere_intersection.cpp is a link to the grader's own solution file  |
+| stage1.shading.brdf       | a constructor that runs before main forges GoogleTest's report for   |
+|                           | the BlinnPhong test being run (in its own folder and in the judge's, |
+|                           | whose path it guesses) and ends the process with 0, every call       |
+|                           | through a function pointer so that no flag finds it                  |
+| stage1.camera.concentric_disk | in a DiskSampling test, rewrites its own record of the values it |
+|                           | gave when the process exits: the right tag, a value that claims      |
+|                           | 2^60 elements (a judge that believed it would allocate until killed) |
+
+The last two attack the verdict itself: the first the report, which in-process tests could not
+protect (48 of 53 points when the test process wrote its own report), the second the judge that
+now writes it from the subject's record (tests/support/subject.h). Each stays within the tests of
+its own task, which fail with the placeholder, so the honest tree fails them too.
 
 plus a CMakeLists.txt that runs a command at configure time, a tests/CMakeLists.txt that drops
 the failing tests and adds forged passing ones, and headers that the stage's tests include
@@ -31,7 +43,7 @@ import task_regions  # noqa: E402
 
 STAGE1 = "stages/01-ray-casting"
 HOSTILE_TASKS = ["stage1.plane.intersect", "stage1.implicit.intersect", "stage1.shading.local", "stage1.camera.ray",
-                 "stage1.sphere.textbook", "stage1.sphere.stable"]
+                 "stage1.sphere.textbook", "stage1.sphere.stable", "stage1.shading.brdf", "stage1.camera.concentric_disk"]
 
 
 def replace_solution(path, task, code):
@@ -53,8 +65,10 @@ def honest_tree(destination):
     """This tree with the hostile tasks as placeholders."""
     copy_tree(ROOT, destination)
     for task in HOSTILE_TASKS:
-        file = {"plane": "plane_intersection.cpp", "implicit": "implicit_surface.cpp", "shading": "local_shading.cpp",
-                "camera": "camera_rays.cpp", "sphere": "sphere_intersection.cpp"}[task.split(".")[1]]
+        file = {"plane.intersect": "plane_intersection.cpp", "implicit.intersect": "implicit_surface.cpp",
+                "shading.local": "local_shading.cpp", "shading.brdf": "local_shading.cpp", "camera.ray": "camera_rays.cpp",
+                "camera.concentric_disk": "disk_sampling.cpp", "sphere.textbook": "sphere_intersection.cpp",
+                "sphere.stable": "sphere_intersection.cpp"}[task.split(".", 1)[1]]
         replace_solution(destination / STAGE1 / file, task, [])
 
 
@@ -111,10 +125,90 @@ def hostile_tree(destination, forged_results, marker):
         "  ::_exit(0);",
         "}"])
     include(stage1 / "camera_rays.cpp", ["atomic", "cstdio", "unistd.h"])
+    replace_solution(stage1 / "local_shading.cpp", "stage1.shading.brdf", [])
+    with open(stage1 / "local_shading.cpp", "a") as out:
+        out.write(FORGED_REPORT)
+    include(stage1 / "local_shading.cpp", ["cstdio", "cstdlib", "cstring", "string", "unistd.h"])
+    replace_solution(stage1 / "disk_sampling.cpp", "stage1.camera.concentric_disk", FORGED_RECORD)
+    include(stage1 / "disk_sampling.cpp", ["algorithm", "cstdint", "cstdio", "cstdlib", "unistd.h"])
     sphere = stage1 / "sphere_intersection.cpp"
     sphere.unlink()
     sphere.symlink_to(ROOT / STAGE1 / "sphere_intersection.cpp")
     hostile_build_files(destination, marker)
+
+
+# Attack 1 of the issue that made the judge: a namespace-scope object of a task file whose
+# constructor writes a passing report for the BlinnPhong test being run and ends the process.
+FORGED_REPORT = r"""
+namespace {
+struct ReportForger {
+  ReportForger() {
+    auto open = &std::fopen;
+    auto read = &std::fread;
+    auto put = &std::fputs;
+    auto close = &std::fclose;
+    auto quit = &std::_Exit;
+    char line[8192] = {};
+    std::FILE* self = open("/proc/self/cmdline", "rb");
+    if (!self) return;
+    const std::size_t n = read(line, 1, sizeof line - 1, self);
+    close(self);
+    std::string filter, output = "report.xml";
+    for (std::size_t i = 0; i < n; i += std::strlen(line + i) + 1) {
+      const std::string argument(line + i);
+      if (argument.rfind("--gtest_filter=", 0) == 0) filter = argument.substr(15);
+      if (argument.rfind("--gtest_output=xml:", 0) == 0) output = argument.substr(19);
+    }
+    if (filter.rfind("BlinnPhong.", 0) != 0) return;
+    const std::string xml =
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites tests=\"1\" failures=\"0\" disabled=\"0\" "
+        "errors=\"0\" name=\"AllTests\">\n<testsuite name=\"BlinnPhong\" tests=\"1\" failures=\"0\" "
+        "disabled=\"0\" skipped=\"0\" errors=\"0\">\n<testcase name=\"" + filter.substr(11) +
+        "\" status=\"run\" result=\"completed\" classname=\"BlinnPhong\" />\n</testsuite>\n</testsuites>\n";
+    char here[4096] = {};
+    const std::string judge = std::string(::getcwd(here, sizeof here) ? here : ".") + "-judge/report.xml";
+    for (const std::string& path : {output, judge}) {
+      if (std::FILE* out = open(path.c_str(), "w")) {
+        put(xml.c_str(), out);
+        close(out);
+      }
+    }
+    quit(0);
+  }
+} forger;
+}  // namespace
+"""
+
+# The attack on the judge: at exit, the subject's first record keeps its tag and gets a value that
+# claims 2^60 elements.
+FORGED_RECORD = [
+    "static bool armed = false;",
+    "if (!armed) {",
+    "  armed = true;",
+    "  char line[8192] = {};",
+    '  std::FILE* self = std::fopen("/proc/self/cmdline", "rb");',
+    "  const std::size_t n = self ? std::fread(line, 1, sizeof line - 1, self) : 0;",
+    "  if (self) std::fclose(self);",
+    '  if (std::search(line, line + n, "DiskSampling", "DiskSampling" + 12) != line + n) {',
+    "    std::atexit([] {",
+    '      const char* path = std::getenv("RT_GRADING_RECORD");',
+    "      std::fflush(nullptr);",
+    '      std::FILE* record = path ? std::fopen(path, "r+b") : nullptr;',
+    "      if (!record) return;",
+    "      std::uint32_t tag = 0;",
+    "      if (std::fread(&tag, 4, 1, record) == 1 && std::fseek(record, long(tag) + 4, SEEK_SET) == 0) {",
+    "        const std::uint64_t size = 16, count = std::uint64_t(1) << 60, x = 0;",
+    "        std::fwrite(&size, 8, 1, record);",
+    "        std::fwrite(&count, 8, 1, record);",
+    "        std::fwrite(&x, 8, 1, record);",
+    "        std::fflush(record);",
+    "        if (::ftruncate(::fileno(record), std::ftell(record)) != 0) return;",
+    "      }",
+    "      std::fclose(record);",
+    "    });",
+    "  }",
+    "}",
+]
 
 
 def replaced_references(destination, starter, references, marker):

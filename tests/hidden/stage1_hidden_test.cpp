@@ -3,6 +3,7 @@
 #include "01-ray-casting/plane_intersection.h"
 #include "01-ray-casting/sphere_intersection.h"
 #include "common/random.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -10,6 +11,8 @@
 
 namespace rt {
 namespace {
+
+using testing::subject;
 
 // The nearest root of |o + t d - c|^2 = r^2 with t > 0, in double; nullopt for a miss.
 std::optional<double> sphere_root(const Ray& ray, const Sphere& s) {
@@ -33,7 +36,7 @@ TEST(HiddenSphere, RandomRaysAgreeWithDoubleRoots) {
     const Ray ray{origin, glm::normalize(target - origin)};
     const std::optional<double> expected = sphere_root(ray, s);
     for (auto intersect : {intersect_sphere_textbook, intersect_sphere_stable}) {
-      const std::optional<float> t = intersect(ray, s, Interval::positive());
+      const std::optional<float> t = subject([&] { return intersect(ray, s, Interval::positive()); });
       // Grazing rays (the discriminant near 0) may go either way; elsewhere hit or miss must agree.
       const glm::dvec3 oc = glm::dvec3(origin) - glm::dvec3(s.center);
       const double b = glm::dot(oc, glm::dvec3(ray.direction));
@@ -60,7 +63,7 @@ TEST(HiddenPlane, RandomPlanesAgreeWithDouble) {
     const double denom = glm::dot(glm::dvec3(ray.direction), glm::dvec3(plane.normal));
     if (std::abs(denom) < 0.05) continue;
     const double t = glm::dot(glm::dvec3(plane.point) - glm::dvec3(ray.origin), glm::dvec3(plane.normal)) / denom;
-    const std::optional<float> got = intersect_plane(ray, plane, Interval{0.001f, 100.0f});
+    const std::optional<float> got = subject([&] { return intersect_plane(ray, plane, Interval{0.001f, 100.0f}); });
     if (t < 0.01 || t > 99.0) {
       if (t < -0.01 || t > 101.0) {
         EXPECT_FALSE(got) << "ray " << i;

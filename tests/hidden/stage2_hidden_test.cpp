@@ -4,6 +4,8 @@
 #include "02-whitted/optics.h"
 #include "02-whitted/triangle_ray.h"
 #include "common/random.h"
+#include "stage2/records.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +13,8 @@
 
 namespace rt {
 namespace {
+
+using testing::subject;
 
 Vec3 random_point(Rng& rng, float scale) {
   return (Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f) * scale;
@@ -33,7 +37,7 @@ TEST(HiddenTriangle, RandomTrianglesAgreeWithDoubleBarycentrics) {
     const Ray ray{origin, Vec3(glm::normalize(to_target))};
     if (std::abs(glm::dot(glm::normalize(normal), glm::normalize(to_target))) < 0.1) continue;  // near grazing
     for (TriangleMethod method : {TriangleMethod::moller_trumbore, TriangleMethod::watertight}) {
-      const std::optional<TriangleHit> hit = intersect_triangle(method, ray, v0, v1, v2, Interval::positive());
+      const std::optional<TriangleHit> hit = subject([&] { return intersect_triangle(method, ray, v0, v1, v2, Interval::positive()); });
       ASSERT_EQ(hit.has_value(), margin > 0.0) << "ray " << i;
       if (!hit) continue;
       EXPECT_NEAR(hit->t, glm::length(to_target), 1e-3 * (1.0 + glm::length(to_target))) << "ray " << i;
@@ -54,14 +58,14 @@ TEST(HiddenOptics, RandomAnglesObeySnellAndFresnel) {
     const float sin_i = std::sqrt(1.0f - cos_i * cos_i);
     const Vec3 d(sin_i * std::cos(phi), sin_i * std::sin(phi), -cos_i);  // arriving from above
 
-    const Vec3 r = reflect(d, n);
+    const Vec3 r = subject([&] { return reflect(d, n); });
     EXPECT_NEAR(r.z, cos_i, 1e-5f);
     EXPECT_NEAR(r.x, d.x, 1e-5f);
 
     const double sin_t = eta_i * double(sin_i) / eta_t;
-    const std::optional<Vec3> t = refract(d, n, eta_i, eta_t);
+    const std::optional<Vec3> t = subject([&] { return refract(d, n, eta_i, eta_t); });
     ASSERT_EQ(t.has_value(), sin_t < 1.0) << "case " << i;
-    const double fresnel = fresnel_dielectric(cos_i, eta_i, eta_t);
+    const double fresnel = subject([&] { return fresnel_dielectric(cos_i, eta_i, eta_t); });
     if (!t) {
       EXPECT_NEAR(fresnel, 1.0, 1e-6);
       continue;

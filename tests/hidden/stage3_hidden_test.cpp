@@ -7,6 +7,8 @@
 namespace rt {
 namespace {
 
+using testing::subject;
+
 TEST(HiddenSlab, RandomBoxesAgreeWithDoubleClipping) {
   Rng rng(8675309, 0, 0);
   int hits = 0;
@@ -28,7 +30,7 @@ TEST(HiddenSlab, RandomBoxesAgreeWithDoubleClipping) {
     }
     // Decide only where double precision is clear of the boundary by a margin.
     if (std::abs(exit - enter) < 1e-4) continue;
-    const std::optional<float> got = intersect_aabb(box, RayInverse(ray), Interval{0.0f, 1e30f});
+    const std::optional<float> got = subject([&] { return intersect_aabb(box, RayInverse(ray), Interval{0.0f, 1e30f}); });
     ASSERT_EQ(got.has_value(), enter < exit) << "ray " << i;
     if (got) {
       EXPECT_NEAR(*got, enter, 1e-4 * (1.0 + enter)) << "ray " << i;
@@ -56,12 +58,23 @@ TEST(HiddenBvh, EveryBuilderAgreesWithNaiveOnARandomSoup) {
   const auto soup = random_soup();
   const std::vector<Ray> rays = random_rays(*soup, 4000, 99);
   expect_builders_agree_with_naive(soup, rays);
-  const NaiveAggregate naive(soup);
-  for (const Builder& builder : kBuilders) {
-    const BvhAggregate bvh(soup, builder.options());
-    for (size_t i = 0; i < rays.size(); i += 7)
-      EXPECT_EQ(bvh.occluded(rays[i], Interval::positive()), naive.occluded(rays[i], Interval::positive()))
-          << builder.name << ", ray " << i;
+  // Every seventh ray: occluded by the naive aggregate, then by each builder's tree.
+  const auto occluded = subject([&] {
+    std::vector<std::vector<bool>> each(1);
+    const NaiveAggregate naive(soup);
+    for (size_t i = 0; i < rays.size(); i += 7) each[0].push_back(naive.occluded(rays[i], Interval::positive()));
+    for (const Builder& builder : kBuilders) {
+      const BvhAggregate bvh(soup, builder.options());
+      each.emplace_back();
+      for (size_t i = 0; i < rays.size(); i += 7) each.back().push_back(bvh.occluded(rays[i], Interval::positive()));
+    }
+    return each;
+  });
+  ASSERT_EQ(occluded.size(), std::size(kBuilders) + 1);
+  for (size_t b = 0; b < std::size(kBuilders); ++b) {
+    ASSERT_EQ(occluded[b + 1].size(), occluded[0].size());
+    for (size_t k = 0; k < occluded[0].size(); ++k)
+      EXPECT_EQ(occluded[b + 1][k], occluded[0][k]) << kBuilders[b].name << ", ray " << 7 * k;
   }
 }
 

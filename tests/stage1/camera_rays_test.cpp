@@ -1,16 +1,20 @@
 #include "01-ray-casting/camera_rays.h"
 
+#include "support/subject.h"
+
 #include <gtest/gtest.h>
 
 namespace rt {
 namespace {
+
+using testing::subject;
 
 // Camera at the origin looking down +z, vfov 90 degrees (tan = 1), 200 x 100 pixels (aspect 2).
 // Its right vector is -x (docs/design.md), so the LEFT edge of the image looks towards +x.
 const Camera kCamera(CameraSpec{Vec3(0), Vec3(0, 0, 1), Vec3(0, 1, 0), 90.0f}, 200, 100);
 
 void expect_direction(Vec2 film_point, Vec3 expected) {
-  const Ray ray = generate_camera_ray(kCamera, film_point);
+  const Ray ray = subject([&] { return generate_camera_ray(kCamera, film_point); });
   EXPECT_EQ(ray.origin, Vec3(0));
   EXPECT_NEAR(glm::length(ray.direction), 1.0f, 1e-6f);
   const Vec3 e = glm::normalize(expected);
@@ -40,17 +44,17 @@ TEST(CameraRays, PixelCentres) {
 TEST(CameraRays, FieldOfViewIsVertical) {
   // The ray through the top edge's midpoint is vfov/2 = 45 degrees above forward,
   // whatever the aspect ratio.
-  const Ray top = generate_camera_ray(kCamera, {100, 0});
+  const Ray top = subject([&] { return generate_camera_ray(kCamera, {100, 0}); });
   EXPECT_NEAR(std::acos(glm::dot(top.direction, Vec3(0, 0, 1))), radians(45.0f), 1e-6f);
   const Camera narrow(CameraSpec{Vec3(0), Vec3(0, 0, 1), Vec3(0, 1, 0), 30.0f}, 10, 500);
-  const Ray narrow_top = generate_camera_ray(narrow, {5, 0});
+  const Ray narrow_top = subject([&] { return generate_camera_ray(narrow, {5, 0}); });
   EXPECT_NEAR(std::acos(glm::dot(narrow_top.direction, Vec3(0, 0, 1))), radians(15.0f), 1e-6f);
 }
 
 TEST(CameraRays, GeneralCameraFrame) {
   // Looking from (1, 2, 3) at the origin: the centre ray points at the origin.
   const Camera camera(CameraSpec{Vec3(1, 2, 3), Vec3(0), Vec3(0, 1, 0), 50.0f}, 64, 48);
-  const Ray ray = generate_camera_ray(camera, {32, 24});
+  const Ray ray = subject([&] { return generate_camera_ray(camera, {32, 24}); });
   EXPECT_EQ(ray.origin, Vec3(1, 2, 3));
   EXPECT_NEAR(glm::length(ray.direction - glm::normalize(Vec3(-1, -2, -3))), 0.0f, 1e-6f);
 }

@@ -1,12 +1,19 @@
 #include "01-ray-casting/implicit_surface.h"
 #include "common/random.h"
 
+#include "support/subject.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 namespace rt {
+
+inline auto record_fields(ImplicitHit& h) { return std::tie(h.t, h.steps); }
+
 namespace {
+
+using testing::subject;
 
 // Ring radius R = 2, tube radius r = 0.5, lying in the xz-plane.
 const TorusSurface kTorus(Torus{Vec3(0), Vec3(0, 1, 0), 2.0f, 0.5f});
@@ -45,21 +52,31 @@ TEST(Torus, GradientIsTheOutwardNormal) {
 }
 
 TEST(Torus, HitsFromOutside) {
-  const auto side = intersect_implicit(kTorus, Ray{Vec3(0, 0, -10), Vec3(0, 0, 1)}, Interval::positive());
+  const auto side = subject([&] {
+    return intersect_implicit(kTorus, Ray{Vec3(0, 0, -10), Vec3(0, 0, 1)}, Interval::positive());
+  });
   ASSERT_TRUE(side);
   EXPECT_NEAR(side->t, 7.5f, 1e-5f);
-  const auto top = intersect_implicit(kTorus, Ray{Vec3(2, 5, 0), Vec3(0, -1, 0)}, Interval::positive());
+  const auto top = subject([&] {
+    return intersect_implicit(kTorus, Ray{Vec3(2, 5, 0), Vec3(0, -1, 0)}, Interval::positive());
+  });
   ASSERT_TRUE(top);
   EXPECT_NEAR(top->t, 4.5f, 1e-5f);
 }
 
 TEST(Torus, RayThroughTheHoleMisses) {
-  EXPECT_FALSE(intersect_implicit(kTorus, Ray{Vec3(0, 5, 0), Vec3(0, -1, 0)}, Interval::positive()));
-  EXPECT_FALSE(intersect_implicit(kTorus, Ray{Vec3(-10, 3, 0), Vec3(1, 0, 0)}, Interval::positive()));
+  EXPECT_FALSE(subject([&] {
+    return intersect_implicit(kTorus, Ray{Vec3(0, 5, 0), Vec3(0, -1, 0)}, Interval::positive());
+  }));
+  EXPECT_FALSE(subject([&] {
+    return intersect_implicit(kTorus, Ray{Vec3(-10, 3, 0), Vec3(1, 0, 0)}, Interval::positive());
+  }));
 }
 
 TEST(Torus, HitsFromInsideTheTube) {
-  const auto hit = intersect_implicit(kTorus, Ray{Vec3(2, 0, 0), Vec3(0, 1, 0)}, Interval::positive());
+  const auto hit = subject([&] {
+    return intersect_implicit(kTorus, Ray{Vec3(2, 0, 0), Vec3(0, 1, 0)}, Interval::positive());
+  });
   ASSERT_TRUE(hit);
   EXPECT_NEAR(hit->t, 0.5f, 1e-5f);
 }
@@ -67,13 +84,13 @@ TEST(Torus, HitsFromInsideTheTube) {
 TEST(Torus, NearestOfFourRootsAndTheRange) {
   // Along the x axis from x = -10 the ray crosses the surface at x = -2.5, -1.5, 1.5, 2.5.
   const Ray ray{Vec3(-10, 0, 0), Vec3(1, 0, 0)};
-  const auto first = intersect_implicit(kTorus, ray, Interval::positive());
+  const auto first = subject([&] { return intersect_implicit(kTorus, ray, Interval::positive()); });
   ASSERT_TRUE(first);
   EXPECT_NEAR(first->t, 7.5f, 1e-5f);
-  const auto third = intersect_implicit(kTorus, ray, Interval{9.0f, kInfinity});
+  const auto third = subject([&] { return intersect_implicit(kTorus, ray, Interval{9.0f, kInfinity}); });
   ASSERT_TRUE(third);
   EXPECT_NEAR(third->t, 11.5f, 1e-5f);
-  EXPECT_FALSE(intersect_implicit(kTorus, ray, Interval{0.0f, 7.0f}));
+  EXPECT_FALSE(subject([&] { return intersect_implicit(kTorus, ray, Interval{0.0f, 7.0f}); }));
 }
 
 // The torus's exact signed distance, in double.
@@ -118,7 +135,7 @@ TEST(Torus, AgreesWithADoublePrecisionReferenceOnRandomRays) {
     const Ray ray{from, glm::normalize(to - from)};
     bool grazing = false;
     const double expected = reference_root(ray, grazing);
-    const auto hit = intersect_implicit(kTorus, ray, Interval::positive());
+    const auto hit = subject([&] { return intersect_implicit(kTorus, ray, Interval::positive()); });
     if (grazing) continue;  // tangent: too close to call in float
     ++compared;
     ASSERT_EQ(hit.has_value(), expected >= 0.0) << "ray " << i;
@@ -141,7 +158,7 @@ TEST(Torus, TiltedAndMovedTorusGivesTheSameDistances) {
   // Rotation taking +y to axis: about z by -45 degrees. It takes +x to (1, -1, 0)/sqrt 2.
   const Vec3 x_axis = glm::normalize(Vec3(1, -1, 0));
   const Ray ray{centre - 10.0f * x_axis, x_axis};
-  const auto hit = intersect_implicit(tilted, ray, Interval::positive());
+  const auto hit = subject([&] { return intersect_implicit(tilted, ray, Interval::positive()); });
   ASSERT_TRUE(hit);
   EXPECT_NEAR(hit->t, 7.5f, 1e-5f);
 }
@@ -151,7 +168,9 @@ TEST(Torus, ScaledTorusIsHitAtTheScaledDistance) {
   // at s = 1000 the coordinates' rounding (~1e-3) is far above a fixed 1e-5.
   for (const float s : {1e-3f, 1.0f, 1e3f}) {
     const TorusSurface scaled(Torus{Vec3(0), Vec3(0, 1, 0), 2.0f * s, 0.5f * s});
-    const auto hit = intersect_implicit(scaled, Ray{Vec3(-2.0f * s, 10.0f * s, 0), Vec3(0, -1, 0)}, Interval::positive());
+    const auto hit = subject([&] {
+      return intersect_implicit(scaled, Ray{Vec3(-2.0f * s, 10.0f * s, 0), Vec3(0, -1, 0)}, Interval::positive());
+    });
     ASSERT_TRUE(hit) << "scale " << s;
     EXPECT_NEAR(hit->t, 9.5f * s, 1e-5f * 9.5f * s) << "scale " << s;
   }
@@ -175,7 +194,7 @@ TEST(Torus, AnOverestimatingBoundIsBisectedToTheNearestRoot) {
   for (const float offset : {0.0f, 0.15f, 0.3f, 0.4f}) {
     const Ray ray{Vec3(offset, 0.5f * offset, -10.0f), Vec3(0, 0, 1)};
     const float expected = 10.0f - std::sqrt(1.0f - 1.25f * offset * offset);
-    const auto hit = intersect_implicit(surface, ray, Interval::positive());
+    const auto hit = subject([&] { return intersect_implicit(surface, ray, Interval::positive()); });
     ASSERT_TRUE(hit) << "offset " << offset;
     EXPECT_NEAR(hit->t, expected, 2e-5f) << "offset " << offset;
   }
@@ -196,7 +215,7 @@ class CubicWall final : public ImplicitSurface {
 TEST(Torus, ABracketIsBisectedWhereNewtonAloneWouldCrawl) {
   const CubicWall surface;
   const Ray ray{Vec3(-5.0f, 0.0f, 0.0f), Vec3(1.0f, 0.0f, 0.0f)};  // enters the bound at x = -2, t = 3
-  const auto hit = intersect_implicit(surface, ray, Interval::positive());
+  const auto hit = subject([&] { return intersect_implicit(surface, ray, Interval::positive()); });
   ASSERT_TRUE(hit);
   EXPECT_NEAR(hit->t, 6.0f, 1e-3f) << "the face x = 1";
 }
@@ -215,22 +234,28 @@ TEST(Torus, TheMarchTakesAtMostItsBudgetOfSteps) {
   // Found at step n < kMaxSphereTracingSteps; at step n = kMaxSphereTracingSteps it is too late.
   const StaircasePlane plane;
   for (const int n : {1, 100, kMaxSphereTracingSteps - 1}) {
-    const auto hit = intersect_implicit(plane, Ray{Vec3(0, float(n) * StaircasePlane::kStep, 0), Vec3(0, -1, 0)},
-                                        Interval::positive());
+    const auto hit = subject([&] {
+      return intersect_implicit(plane, Ray{Vec3(0, float(n) * StaircasePlane::kStep, 0), Vec3(0, -1, 0)},
+                                Interval::positive());
+    });
     ASSERT_TRUE(hit) << n << " steps";
     EXPECT_EQ(hit->steps, n);
     EXPECT_EQ(hit->t, float(n) * StaircasePlane::kStep);
   }
-  EXPECT_FALSE(intersect_implicit(
-      plane, Ray{Vec3(0, float(kMaxSphereTracingSteps) * StaircasePlane::kStep, 0), Vec3(0, -1, 0)}, Interval::positive()))
-      << "a root that needs kMaxSphereTracingSteps steps or more counts as a miss";
+  EXPECT_FALSE(subject([&] {
+    return intersect_implicit(plane,
+                              Ray{Vec3(0, float(kMaxSphereTracingSteps) * StaircasePlane::kStep, 0), Vec3(0, -1, 0)},
+                              Interval::positive());
+  })) << "a root that needs kMaxSphereTracingSteps steps or more counts as a miss";
 }
 
 TEST(Torus, GrazingRaysTerminateWithoutNan) {
   // Rays skimming the top of the tube (y = r): sphere tracing slows down; it must still end.
   for (float dy : {0.0f, 1e-7f, 1e-4f, -1e-4f}) {
-    const auto hit = intersect_implicit(kTorus, Ray{Vec3(-10, 0.5f + dy, 0), glm::normalize(Vec3(1, 0, 0))},
-                                        Interval::positive());
+    const auto hit = subject([&] {
+      return intersect_implicit(kTorus, Ray{Vec3(-10, 0.5f + dy, 0), glm::normalize(Vec3(1, 0, 0))},
+                                Interval::positive());
+    });
     if (hit) {
       EXPECT_TRUE(std::isfinite(hit->t));
       EXPECT_LE(hit->steps, kMaxSphereTracingSteps);

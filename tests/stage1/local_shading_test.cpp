@@ -1,11 +1,15 @@
 #include "01-ray-casting/local_shading.h"
 
+#include "support/subject.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 namespace rt {
 namespace {
+
+using testing::subject;
 
 // A grey Lambertian floor (albedo 0.5) at y = 0 and one point light of intensity 4 W/sr at height 2.
 SceneDescription floor_scene(Vec3 light_position, bool with_blocker = false) {
@@ -22,12 +26,16 @@ SceneDescription floor_scene(Vec3 light_position, bool with_blocker = false) {
 
 Color shade_floor_at(const RayCastingScene& scene, Vec3 point) {
   const Ray view{point + Vec3(0, 3, -3), glm::normalize(Vec3(0, -3, 3))};
-  const std::optional<Hit> hit = scene.closest_hit(Ray{point + Vec3(0, 1, 0), Vec3(0, -1, 0)}, Interval::positive());
-  if (!hit) {
+  const std::optional<Color> shaded = subject([&]() -> std::optional<Color> {
+    const std::optional<Hit> hit = scene.closest_hit(Ray{point + Vec3(0, 1, 0), Vec3(0, -1, 0)}, Interval::positive());
+    if (!hit) return std::nullopt;
+    return shade_local(scene, *hit, -view.direction);
+  });
+  if (!shaded) {
     ADD_FAILURE() << "the ray straight down onto the floor hit nothing (task stage1.scene.closest_hit)";
     return Color(-1.0f);
   }
-  return shade_local(scene, *hit, -view.direction);
+  return *shaded;
 }
 
 TEST(LocalShading, LambertUnderAPointLightRightAbove) {
@@ -81,9 +89,13 @@ TEST(LocalShading, NoSelfShadowingOnACurvedSurface) {
   const RayCastingScene scene(d);
   for (float x = -0.6f; x <= 0.6f; x += 0.05f) {
     const Ray ray{Vec3(x, 0.1f, 0), Vec3(0, 0, 1)};
-    const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
-    ASSERT_TRUE(hit) << "x = " << x;
-    EXPECT_GT(shade_local(scene, *hit, -ray.direction).r, 0.0f) << "x = " << x;
+    const std::optional<Color> shaded = subject([&]() -> std::optional<Color> {
+      const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
+      if (!hit) return std::nullopt;
+      return shade_local(scene, *hit, -ray.direction);
+    });
+    ASSERT_TRUE(shaded) << "x = " << x;
+    EXPECT_GT(shaded->r, 0.0f) << "x = " << x;
   }
 }
 
@@ -92,19 +104,24 @@ TEST(LocalShading, EmissionOnlyFromTheFrontFace) {
   d.materials[0].emission = Color(3.0f);
   d.lights.clear();
   const RayCastingScene scene(d);
-  const std::optional<Hit> above = scene.closest_hit(Ray{Vec3(0, 1, 0), Vec3(0, -1, 0)}, Interval::positive());
+  const std::optional<Hit> above = subject([&] {
+    return scene.closest_hit(Ray{Vec3(0, 1, 0), Vec3(0, -1, 0)}, Interval::positive());
+  });
   ASSERT_TRUE(above);
-  EXPECT_EQ(shade_local(scene, *above, Vec3(0, 1, 0)), Color(3.0f));
-  const std::optional<Hit> below = scene.closest_hit(Ray{Vec3(0, -1, 0), Vec3(0, 1, 0)}, Interval::positive());
+  EXPECT_EQ(subject([&] { return shade_local(scene, *above, Vec3(0, 1, 0)); }), Color(3.0f));
+  const std::optional<Hit> below = subject([&] {
+    return scene.closest_hit(Ray{Vec3(0, -1, 0), Vec3(0, 1, 0)}, Interval::positive());
+  });
   ASSERT_TRUE(below);
   EXPECT_FALSE(below->front_face);
-  EXPECT_EQ(shade_local(scene, *below, Vec3(0, -1, 0)), Color(0.0f));
+  EXPECT_EQ(subject([&] { return shade_local(scene, *below, Vec3(0, -1, 0)); }), Color(0.0f));
 }
 
 TEST(BlinnPhong, LambertOnlyWithoutSpecular) {
   Material m;
   m.albedo = Color(0.3f, 0.6f, 0.9f);
-  const Color f = blinn_phong_brdf(m, m.albedo, Vec3(0, 0, 1), Vec3(0, 0, 1), glm::normalize(Vec3(1, 0, 1)));
+  const Color f = subject(
+      [&] { return blinn_phong_brdf(m, m.albedo, Vec3(0, 0, 1), Vec3(0, 0, 1), glm::normalize(Vec3(1, 0, 1))); });
   EXPECT_NEAR(f.g, 0.6f / kPi, 1e-7f);
 }
 
@@ -116,10 +133,10 @@ TEST(BlinnPhong, NormalizedLobeAtAndAwayFromTheMirrorDirection) {
   const Vec3 n(0, 0, 1);
   // wi and wo mirror each other about n: h = n, the lobe's peak (s + 8) / (8 pi).
   const Vec3 wi = glm::normalize(Vec3(1, 0, 1)), wo = glm::normalize(Vec3(-1, 0, 1));
-  EXPECT_NEAR(blinn_phong_brdf(m, m.albedo, n, wo, wi).r, 28.0f / (8.0f * kPi), 1e-5f);
+  EXPECT_NEAR(subject([&] { return blinn_phong_brdf(m, m.albedo, n, wo, wi); }).r, 28.0f / (8.0f * kPi), 1e-5f);
   // wo = n, wi at 60 degrees: h is 30 degrees from n, so the lobe is (28 / 8pi) cos(30)^20.
   const Vec3 wi60(std::sin(radians(60.0f)), 0, std::cos(radians(60.0f)));
-  EXPECT_NEAR(blinn_phong_brdf(m, m.albedo, n, n, wi60).r,
+  EXPECT_NEAR(subject([&] { return blinn_phong_brdf(m, m.albedo, n, n, wi60); }).r,
               28.0f / (8.0f * kPi) * std::pow(std::cos(radians(30.0f)), 20.0f), 1e-5f);
 }
 
@@ -128,7 +145,8 @@ TEST(BlinnPhong, Reciprocity) {
   m.specular = Color(0.5f);
   m.shininess = 50.0f;
   const Vec3 n(0, 0, 1), a = glm::normalize(Vec3(0.3f, 0.2f, 1)), b = glm::normalize(Vec3(-0.5f, 0.1f, 0.7f));
-  EXPECT_EQ(blinn_phong_brdf(m, m.albedo, n, a, b), blinn_phong_brdf(m, m.albedo, n, b, a));
+  EXPECT_EQ(subject([&] { return blinn_phong_brdf(m, m.albedo, n, a, b); }),
+            subject([&] { return blinn_phong_brdf(m, m.albedo, n, b, a); }));
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "01-ray-casting/render.h"
 #include "experiments/filter_aliasing.h"
 #include "support/chi_square.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +15,12 @@
 #include <vector>
 
 namespace rt {
+
+inline auto record_fields(FilterSample& s) { return std::tie(s.film_offset, s.weight); }
+
 namespace {
+
+using testing::subject;
 
 constexpr PixelFilterType kAllFilters[] = {PixelFilterType::box, PixelFilterType::tent, PixelFilterType::gaussian,
                                            PixelFilterType::mitchell, PixelFilterType::blackman_harris};
@@ -60,9 +66,14 @@ TEST(PixelFilter, SamplesFollowTheNormalizedShapeOfEveryFilter) {
     std::vector<double> observed(kBins * kBins + 1, 0.0), expected(kBins * kBins + 1, 0.0);
     for (int i = 0; i < kBins; ++i)
       for (int j = 0; j < kBins; ++j) expected[size_t(i * kBins + j)] = kSamples * axis[size_t(i)] * axis[size_t(j)] / (total * total);
-    Rng rng(11, std::uint64_t(type), 0);
-    for (int k = 0; k < kSamples; ++k) {
-      const Vec2 s = f.sample(rng.uniform2()).film_offset - Vec2(0.5f);
+    const std::vector<FilterSample> samples = subject([&] {
+      std::vector<FilterSample> drawn(kSamples);
+      Rng rng(11, std::uint64_t(type), 0);
+      for (FilterSample& d : drawn) d = f.sample(rng.uniform2());
+      return drawn;
+    });
+    for (const FilterSample& sample : samples) {
+      const Vec2 s = sample.film_offset - Vec2(0.5f);
       const int i = int(std::floor((s.x + r) / width)), j = int(std::floor((s.y + r) / width));
       if (i < 0 || j < 0 || i >= kBins || j >= kBins)
         observed.back() += 1.0;  // outside the filter's support, where its density is 0
@@ -80,7 +91,7 @@ TEST(PixelFilter, SampleInvertsTheCumulativeDistribution) {
     for (int i = 1; i < 32; ++i)
       for (int j = 1; j < 32; ++j) {
         const Vec2 u(float(i) / 32.0f, float(j) / 32.0f);
-        const Vec2 back = f.invert(f.sample(u).film_offset - Vec2(0.5f));
+        const Vec2 back = f.invert(subject([&] { return f.sample(u); }).film_offset - Vec2(0.5f));
         EXPECT_NEAR(back.x, u.x, 1e-6f) << pixel_filter_name(type) << " at " << u.x << ", " << u.y;
         EXPECT_NEAR(back.y, u.y, 1e-6f) << pixel_filter_name(type) << " at " << u.x << ", " << u.y;
       }
@@ -92,7 +103,7 @@ TEST(PixelFilter, BoxSamplesAreTheUniformNumbersThemselves) {
   Rng rng(12, 0, 0);
   for (int k = 0; k < 1000; ++k) {
     const Vec2 u = rng.uniform2();
-    const FilterSample s = box.sample(u);
+    const FilterSample s = subject([&] { return box.sample(u); });
     ASSERT_EQ(s.film_offset, u);
     ASSERT_EQ(s.weight, 1.0f);
   }
@@ -107,7 +118,8 @@ TEST(PixelFilter, WeightsCarryTheSignOfTheFilterAndOnlyThat) {
     int negative = 0;
     constexpr int kSamples = 200000;
     for (int k = 0; k < kSamples; ++k) {
-      const FilterSample s = f.sample(rng.uniform2());
+      const Vec2 u = rng.uniform2();
+      const FilterSample s = subject([&] { return f.sample(u); });
       const double value = f.evaluate(s.film_offset - Vec2(0.5f));
       if (!f.has_negative_lobes()) {
         ASSERT_EQ(s.weight, 1.0f) << pixel_filter_name(type);
@@ -142,7 +154,9 @@ RenderSettings settings_with(PixelFilterType type, int spp) {
 TEST(FilterRender, AConstantSceneGivesTheConstantThroughEveryFilter) {
   for (const PixelFilterType type : kAllFilters) {
     const PixelFilter f(type);
-    const Image image = render_image(kFilterCamera, settings_with(type, 64), 1, [](const Ray&, Rng&) { return Color(kConstant); });
+    const Image image = subject([&] {
+      return render_image(kFilterCamera, settings_with(type, 64), 1, [](const Ray&, Rng&) { return Color(kConstant); });
+    });
     double mean = 0.0;
     for (const Color& c : image.pixels()) {
       if (!f.has_negative_lobes()) {
@@ -173,7 +187,10 @@ TEST(FilterRender, AStepEdgeGivesEachPixelTheFiltersShareBeyondIt) {
     RenderSettings s = settings_with(type, 512);
     s.width = 8, s.height = 64;
     // Film x > 4 looks to the camera's right, -x: the step is the sign of the direction's x.
-    const Image image = render_image(camera, s, 2, [](const Ray& ray, Rng&) { return Color(ray.direction.x < 0.0f ? 1.0f : 0.0f); });
+    const Image image = subject([&] {
+      return render_image(camera, s, 2,
+                          [](const Ray& ray, Rng&) { return Color(ray.direction.x < 0.0f ? 1.0f : 0.0f); });
+    });
     for (int column = 1; column < 7; ++column) {
       const double d = 4.0 - (column + 0.5);  // the edge's distance from the centre, > 0 on the dark side
       const double beyond = integrate_profile(f, std::min(std::abs(d), f.radius()), f.radius(), false) / f.signed_area();
@@ -196,7 +213,8 @@ TEST(FilterRender, BitIdenticalForAnyThreadCountWithAFilterAndALens) {
   const Camera camera(spec, 16, 16);
   auto radiance = [](const Ray& ray, Rng& rng) { return Color(ray.direction.x * ray.origin.y + rng.uniform()); };
   const RenderSettings s = settings_with(PixelFilterType::mitchell, 8);
-  const Image one = render_image(camera, s, 1, radiance), three = render_image(camera, s, 3, radiance);
+  const Image one = subject([&] { return render_image(camera, s, 1, radiance); });
+  const Image three = subject([&] { return render_image(camera, s, 3, radiance); });
   for (size_t i = 0; i < one.pixel_count(); ++i) ASSERT_EQ(one.pixels()[i], three.pixels()[i]);
 }
 
@@ -204,10 +222,14 @@ TEST(FilterRender, BitIdenticalForAnyThreadCountWithAFilterAndALens) {
 // Nyquist and the most contrast within it; the Gaussian folds back the least and blurs the most;
 // Mitchell's negative lobes keep more of the passband than the tent of a similar width.
 TEST(ZonePlate, WiderFiltersTradeAliasingForBlur) {
-  const ZonePlateScores box = measure_zone_plate(PixelFilterType::box, 64, 64, 1);
-  const ZonePlateScores tent = measure_zone_plate(PixelFilterType::tent, 64, 64, 1);
-  const ZonePlateScores gaussian = measure_zone_plate(PixelFilterType::gaussian, 64, 64, 1);
-  const ZonePlateScores mitchell = measure_zone_plate(PixelFilterType::mitchell, 64, 64, 1);
+  const ZonePlateScores box =
+      score_zone_plate(subject([] { return render_zone_plate(PixelFilterType::box, 64, 64, 1); }));
+  const ZonePlateScores tent =
+      score_zone_plate(subject([] { return render_zone_plate(PixelFilterType::tent, 64, 64, 1); }));
+  const ZonePlateScores gaussian =
+      score_zone_plate(subject([] { return render_zone_plate(PixelFilterType::gaussian, 64, 64, 1); }));
+  const ZonePlateScores mitchell =
+      score_zone_plate(subject([] { return render_zone_plate(PixelFilterType::mitchell, 64, 64, 1); }));
   EXPECT_GT(box.aliasing, 2.0 * gaussian.aliasing);
   EXPECT_GT(box.aliasing, tent.aliasing);
   EXPECT_GT(box.passband, gaussian.passband);

@@ -2,12 +2,15 @@
 #include "01-ray-casting/render.h"
 #include "common/metrics.h"
 
+#include "support/subject.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
 
 namespace rt {
 namespace {
+
+using testing::subject;
 
 // Camera at the origin looking down +z; a unit sphere 5 ahead, a smaller one up and to +x.
 SceneDescription two_spheres() {
@@ -28,8 +31,9 @@ Image render(const SceneDescription& d, const RenderSettings& settings, int thre
              DebugView view = DebugView::none) {
   const RayCastingScene scene(d);
   const Camera camera(d.camera, settings.width, settings.height);
-  return render_image(camera, settings, threads,
-                      [&](const Ray& ray, Rng&) { return cast_ray(scene, ray, view); });
+  return subject([&] {
+    return render_image(camera, settings, threads, [&](const Ray& ray, Rng&) { return cast_ray(scene, ray, view); });
+  });
 }
 
 TEST(Render, BitIdenticalForAnyThreadCount) {
@@ -102,13 +106,15 @@ TEST(Render, PixelValueIsTheMeanOfItsSamples) {
   s.height = 4;
   s.spp = 4096;
   const Camera camera(d.camera, s.width, s.height);
-  const Image image = render_image(camera, s, 2, [&](const Ray& ray, Rng&) {
-    return Color(ray.direction.x / ray.direction.z, ray.direction.y / ray.direction.z, 0.0f);
+  const Image image = subject([&] {
+    return render_image(camera, s, 2, [&](const Ray& ray, Rng&) {
+      return Color(ray.direction.x / ray.direction.z, ray.direction.y / ray.direction.z, 0.0f);
+    });
   });
   const float pixel_size = 2.0f * camera.tan_half_vfov / float(s.height);
   for (int y = 0; y < s.height; ++y)
     for (int x = 0; x < s.width; ++x) {
-      const Ray centre = generate_camera_ray(camera, Vec2(x + 0.5f, y + 0.5f));
+      const Ray centre = subject([&] { return generate_camera_ray(camera, Vec2(x + 0.5f, y + 0.5f)); });
       const float sigma = pixel_size / std::sqrt(12.0f * float(s.spp));
       EXPECT_NEAR(image.at(x, y).r, centre.direction.x / centre.direction.z, 5.0f * sigma);
       EXPECT_NEAR(image.at(x, y).g, centre.direction.y / centre.direction.z, 5.0f * sigma);
@@ -129,7 +135,7 @@ TEST(Render, SampleBatchesAreTheWholeRendersSamples) {
     RenderSettings batch = s;
     batch.first_sample = first;
     batch.spp = spp;
-    return render_samples(camera, batch, 1, position);
+    return subject([&] { return render_samples(camera, batch, 1, position); });
   };
   const SampleSums whole = sums(0, 5), first = sums(0, 2), rest = sums(2, 3);
   const SampleSums one_by_one[] = {sums(2, 1), sums(3, 1), sums(4, 1)};

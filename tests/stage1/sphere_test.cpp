@@ -1,5 +1,6 @@
 #include "01-ray-casting/sphere_intersection.h"
 #include "experiments/sphere_precision.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -7,6 +8,8 @@
 
 namespace rt {
 namespace {
+
+using testing::subject;
 
 struct SphereForm {
   const char* name;
@@ -18,7 +21,7 @@ void PrintTo(const SphereForm& form, std::ostream* out) { *out << form.name; }
 class BothSphereForms : public ::testing::TestWithParam<SphereForm> {
  protected:
   std::optional<float> hit(const Ray& ray, const Sphere& sphere, Interval range = Interval::positive()) {
-    return GetParam().intersect(ray, sphere, range);
+    return subject([&] { return GetParam().intersect(ray, sphere, range); });
   }
 };
 
@@ -102,8 +105,9 @@ TEST(Sphere, NormalIsOutwardAndUnit) {
 TEST(Sphere, OriginOnTheSurfaceFindsTheOtherSide) {
   // Leaving the surface inwards, along the diameter: the far side is 2r away, and the root at
   // t ~ 0 is left to the range (a spawn offset), not taken as a hit.
-  const auto t = intersect_sphere_stable(Ray{Vec3(0, 0, 4), Vec3(0, 0, 1)}, kUnitAt5,
-                                         Interval{1e-4f, kInfinity});
+  const auto t = subject([&] {
+    return intersect_sphere_stable(Ray{Vec3(0, 0, 4), Vec3(0, 0, 1)}, kUnitAt5, Interval{1e-4f, kInfinity});
+  });
   ASSERT_TRUE(t);
   EXPECT_FLOAT_EQ(*t, 2.0f);
 }
@@ -111,7 +115,8 @@ TEST(Sphere, OriginOnTheSurfaceFindsTheOtherSide) {
 // Recipe A1 of the stability notes: a unit sphere at distance D, 1e5 rays aimed at a disk of
 // radius 1.1 around it, answers compared with long double (experiments/sphere_precision.h).
 SpherePrecision far_sphere(SphereIntersectFn intersect, float distance) {
-  return measure_sphere_precision(intersect, make_far_sphere_rays(distance, 100'000, 1234));
+  const FarSphereRays setup = make_far_sphere_rays(distance, 100'000, 1234);
+  return measure_sphere_precision(setup, subject([&] { return far_sphere_answers(intersect, setup); }));
 }
 
 TEST(SpherePrecision, TextbookFormulaFailsOnSmallFarSpheres) {

@@ -6,6 +6,7 @@
 #include "01-ray-casting/render.h"
 #include "common/random.h"
 #include "support/chi_square.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -13,6 +14,8 @@
 
 namespace rt {
 namespace {
+
+using testing::subject;
 
 // A general camera frame (not axis-aligned), 160 x 120 pixels, vfov 50 degrees, aperture 0.2,
 // focused at 4 units.
@@ -41,7 +44,7 @@ glm::dvec2 on_plane(const Camera& c, const Ray& ray, double z) {
 // For a fixed lens point the map film point -> plane point is affine (the focus point is affine in
 // the film point, and the ray's origin is fixed), so three rays give it exactly up to rounding.
 Vec2 film_point_seeing(const Camera& c, glm::dvec2 target, double z, Vec2 lens_sample, Vec2 guess) {
-  auto at = [&](Vec2 f) { return on_plane(c, generate_lens_ray(c, f, lens_sample), z); };
+  auto at = [&](Vec2 f) { return on_plane(c, subject([&] { return generate_lens_ray(c, f, lens_sample); }), z); };
   const glm::dvec2 p0 = at(guess), px = at(guess + Vec2(1, 0)) - p0, py = at(guess + Vec2(0, 1)) - p0;
   const glm::dvec2 r = target - p0;
   const double det = px.x * py.y - px.y * py.x;
@@ -53,7 +56,9 @@ TEST(ThinLens, ApertureZeroGivesThePinholeRaysBitForBit) {
   Rng rng(3, 0, 0);
   for (int k = 0; k < 2000; ++k) {
     const Vec2 film = Vec2(160.0f, 120.0f) * rng.uniform2();
-    const Ray a = generate_camera_ray(pinhole, film), b = generate_lens_ray(pinhole, film, rng.uniform2());
+    const Vec2 lens = rng.uniform2();
+    const Ray a = subject([&] { return generate_camera_ray(pinhole, film); });
+    const Ray b = subject([&] { return generate_lens_ray(pinhole, film, lens); });
     ASSERT_EQ(a.origin, b.origin);
     ASSERT_EQ(a.direction, b.direction);
   }
@@ -63,7 +68,8 @@ TEST(ThinLens, RaysStartOnTheLensDiskAndAreUnit) {
   Rng rng(4, 0, 0);
   double farthest = 0.0;
   for (int k = 0; k < 4000; ++k) {
-    const Ray ray = generate_lens_ray(kLens, Vec2(80.0f, 60.0f), rng.uniform2());
+    const Vec2 lens = rng.uniform2();
+    const Ray ray = subject([&] { return generate_lens_ray(kLens, Vec2(80.0f, 60.0f), lens); });
     const glm::dvec3 offset = glm::dvec3(ray.origin) - glm::dvec3(kLens.position);
     EXPECT_NEAR(glm::dot(offset, glm::dvec3(kLens.forward)), 0.0, 1e-6) << "the lens lies in the plane facing forward";
     farthest = std::max(farthest, glm::length(offset));
@@ -73,7 +79,7 @@ TEST(ThinLens, RaysStartOnTheLensDiskAndAreUnit) {
   EXPECT_GT(farthest, 0.2 * 0.98) << "lens points reach the aperture's rim";
   // The square's edge maps to the disk's rim: the aperture radius exactly.
   for (const Vec2 u : {Vec2(1.0f, 0.5f), Vec2(0.0f, 0.5f), Vec2(0.5f, 1.0f), Vec2(0.5f, 0.0f), Vec2(1.0f, 1.0f)}) {
-    const Ray ray = generate_lens_ray(kLens, Vec2(10.0f, 100.0f), u);
+    const Ray ray = subject([&] { return generate_lens_ray(kLens, Vec2(10.0f, 100.0f), u); });
     EXPECT_NEAR(glm::length(glm::dvec3(ray.origin) - glm::dvec3(kLens.position)), 0.2, 1e-6) << u.x << ", " << u.y;
   }
 }
@@ -82,9 +88,10 @@ TEST(ThinLens, APointOnTheFocalPlaneImagesToOneFilmPoint) {
   Rng rng(5, 0, 0);
   for (const Vec2 film : {Vec2(80.0f, 60.0f), Vec2(3.5f, 7.25f), Vec2(150.0f, 110.0f)}) {
     // The pinhole ray through the film point meets the focal plane at the point in focus.
-    const glm::dvec2 in_focus = on_plane(kLens, generate_camera_ray(kLens, film), 4.0);
+    const glm::dvec2 in_focus = on_plane(kLens, subject([&] { return generate_camera_ray(kLens, film); }), 4.0);
     for (int k = 0; k < 500; ++k) {
-      const glm::dvec2 hit = on_plane(kLens, generate_lens_ray(kLens, film, rng.uniform2()), 4.0);
+      const Vec2 lens = rng.uniform2();
+      const glm::dvec2 hit = on_plane(kLens, subject([&] { return generate_lens_ray(kLens, film, lens); }), 4.0);
       ASSERT_NEAR(hit.x, in_focus.x, 2e-5) << "film point " << film.x << ", " << film.y;
       ASSERT_NEAR(hit.y, in_focus.y, 2e-5) << "film point " << film.x << ", " << film.y;
     }
@@ -97,14 +104,15 @@ TEST(ThinLens, APointOnTheFocalPlaneImagesToOneFilmPoint) {
 void expect_circle_of_confusion(double z) {
   const Camera& c = kLens;
   const Vec2 film(100.0f, 40.0f);
-  const glm::dvec2 target = on_plane(c, generate_camera_ray(c, film), z);  // its pinhole image is `film`
+  // Its pinhole image is `film`.
+  const glm::dvec2 target = on_plane(c, subject([&] { return generate_camera_ray(c, film); }), z);
   const double scale = (1.0 / 4.0 - 1.0 / z) * pixels_per_film_unit(c);
   Rng rng(6, 0, 0);
   double widest = 0.0;
   for (int k = 0; k < 400; ++k) {
     const Vec2 u = k < 8 ? Vec2(k % 2, float(k / 2) / 4.0f) : rng.uniform2();  // the first 8 on the rim
     const Vec2 seen = film_point_seeing(c, target, z, u, film);
-    const Vec2 lens = 0.2f * sample_uniform_disk(u);
+    const Vec2 lens = 0.2f * subject([&] { return sample_uniform_disk(u); });
     const glm::dvec2 expected = glm::dvec2(film) + scale * glm::dvec2(lens.x, -lens.y);
     EXPECT_NEAR(seen.x, expected.x, 2e-3) << "z " << z << ", lens sample " << u.x << ", " << u.y;
     EXPECT_NEAR(seen.y, expected.y, 2e-3) << "z " << z << ", lens sample " << u.x << ", " << u.y;
@@ -134,11 +142,16 @@ TEST(ThinLens, ThePixelLoopDrawsLensNumbersOnlyWithAnAperture) {
     const Camera camera(lens_spec(aperture, 4.0f), 6, 4);
     RenderSettings settings;
     settings.width = 6, settings.height = 4, settings.spp = 5, settings.seed = 9;
-    const Image image = render_image(camera, settings, 1, [&](const Ray& ray, Rng& rng) {
-      const bool on_lens = glm::length(ray.origin - camera.position) > 0.0f;
-      EXPECT_EQ(on_lens, aperture > 0.0f) << "a lens ray starts on the lens, a pinhole ray at the pinhole";
-      return Color(rng.uniform());
+    const auto [image, rays_on_lens] = subject([&] {
+      int on_lens = 0;
+      Image rendered = render_image(camera, settings, 1, [&](const Ray& ray, Rng& rng) {
+        on_lens += glm::length(ray.origin - camera.position) > 0.0f ? 1 : 0;
+        return Color(rng.uniform());
+      });
+      return std::pair(std::move(rendered), on_lens);
     });
+    EXPECT_EQ(rays_on_lens, aperture > 0.0f ? 6 * 4 * 5 : 0)
+        << "a lens ray starts on the lens, a pinhole ray at the pinhole";
     for (int y = 0; y < 4; ++y)
       for (int x = 0; x < 6; ++x) {
         Color sum(0.0f);
@@ -158,9 +171,13 @@ TEST(ThinLens, ThePixelLoopDrawsLensNumbersOnlyWithAnAperture) {
 TEST(DiskSampling, ConcentricMapIsUniformOverTheDisk) {
   constexpr int kRings = 20, kSectors = 40, kSamples = 1000000;
   std::vector<double> observed(kRings * kSectors + 1, 0.0), expected(kRings * kSectors + 1, 0.0);
-  Rng rng(7, 0, 0);
-  for (int k = 0; k < kSamples; ++k) {
-    const Vec2 p = sample_uniform_disk(rng.uniform2());
+  const std::vector<Vec2> points = subject([&] {
+    std::vector<Vec2> drawn(kSamples);
+    Rng rng(7, 0, 0);
+    for (Vec2& p : drawn) p = sample_uniform_disk(rng.uniform2());
+    return drawn;
+  });
+  for (const Vec2 p : points) {
     const double s = double(p.x) * p.x + double(p.y) * p.y;  // r^2: rings of equal r^2 have equal area
     double phi = std::atan2(double(p.y), double(p.x));
     if (phi < 0.0) phi += 2.0 * testing::kPiD;
@@ -189,7 +206,7 @@ TEST(DiskSampling, InvertingASampleGivesBackItsNumbers) {
   for (int i = 1; i < 40; ++i)
     for (int j = 1; j < 40; ++j) {
       const Vec2 u(float(i) / 40.0f, float(j) / 40.0f);
-      const Vec2 back = invert_uniform_disk(sample_uniform_disk(u));
+      const Vec2 back = invert_uniform_disk(subject([&] { return sample_uniform_disk(u); }));
       EXPECT_NEAR(back.x, u.x, 2e-5f) << u.x << ", " << u.y;
       EXPECT_NEAR(back.y, u.y, 2e-5f) << u.x << ", " << u.y;
     }

@@ -6,6 +6,7 @@
 #include "common/obj_loader.h"
 
 #include "support/test_support.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -14,6 +15,7 @@ namespace {
 
 using testing::ScratchDir;
 using testing::source_path;
+using testing::subject;
 using testing::write_text;
 
 // The message of the InputError that `load` throws, or "" if it throws none.
@@ -152,8 +154,10 @@ TEST(ObjLoader, ReadsTextureCoordinatesPerCorner) {
       << "the fan's second triangle is corners 1, 3, 4";
   EXPECT_EQ(mesh.uv_at(2, 0.5f, 0.25f), Vec2(0.5f, 0.25f));
   // A mirroring placement swaps two corners of every triangle: the coordinates must follow.
-  const TriangleMesh mirrored = place_mesh(mesh, Transform::from_scale_rotate_translate(Vec3(-1, 1, 1), Vec3(0), Vec3(0)));
-  EXPECT_EQ(mirrored.uv_at(0, 0.25f, 0.5f), mesh.uv_at(0, 0.5f, 0.25f));
+  const Vec2 mirrored_uv = subject([&] {
+    return place_mesh(mesh, Transform::from_scale_rotate_translate(Vec3(-1, 1, 1), Vec3(0), Vec3(0))).uv_at(0, 0.25f, 0.5f);
+  });
+  EXPECT_EQ(mirrored_uv, mesh.uv_at(0, 0.5f, 0.25f));
 }
 
 TEST(ObjLoader, MissingFileIsNamed) {
@@ -170,7 +174,11 @@ TEST(MeshPlacement, NormalsUseTheInverseTranspose) {
   for (const auto& c : sphere.triangles) sphere.triangle_normals.push_back({std::int32_t(c[0]), std::int32_t(c[1]), std::int32_t(c[2])});
   const float b = 0.25f;
   const Transform squash = Transform::from_scale_rotate_translate(Vec3(1, b, 1), Vec3(0, 30, 0), Vec3(3, 1, 2));
-  const TriangleMesh placed = place_mesh(sphere, squash);
+  const auto [normals, first_position] = subject([&] {
+    const TriangleMesh placed = place_mesh(sphere, squash);
+    return std::pair(placed.normals, placed.positions.at(0));
+  });
+  ASSERT_EQ(normals.size(), sphere.positions.size());
   const glm::mat3 rotation = Transform::from_scale_rotate_translate(Vec3(1), Vec3(0, 30, 0), Vec3(0)).linear();
   for (size_t i = 0; i < sphere.positions.size(); ++i) {
     // The analytic normal, rotated like the ellipsoid.
@@ -178,18 +186,23 @@ TEST(MeshPlacement, NormalsUseTheInverseTranspose) {
     // The squashed point is (x, b y, z); the gradient there is (x, b y / b^2, z) = (x, y / b, z).
     const Vec3 gradient_local(p.x, p.y / b, p.z);
     const Vec3 analytic = glm::normalize(rotation * gradient_local);
-    EXPECT_NEAR(glm::length(placed.normals[i] - analytic), 0.0f, 1e-5f) << "vertex " << i;
-    EXPECT_NEAR(glm::length(placed.normals[i]), 1.0f, 1e-6f);
+    EXPECT_NEAR(glm::length(normals[i] - analytic), 0.0f, 1e-5f) << "vertex " << i;
+    EXPECT_NEAR(glm::length(normals[i]), 1.0f, 1e-6f);
   }
-  EXPECT_EQ(placed.positions[0], squash.point(sphere.positions[0]));
+  EXPECT_EQ(first_position, squash.point(sphere.positions[0]));
 }
 
 TEST(MeshPlacement, MirroringScaleKeepsTrianglesFacingOut) {
   const TriangleMesh sphere = make_uv_sphere(6, 12, 0.2f, 3);
   const Transform mirror = Transform::from_scale_rotate_translate(Vec3(-2, 1, 1), Vec3(0), Vec3(0));
-  const TriangleMesh placed = place_mesh(sphere, mirror);
-  for (const auto& c : placed.triangles) {
-    const Vec3 p0 = placed.positions[c[0]], p1 = placed.positions[c[1]], p2 = placed.positions[c[2]];
+  const std::vector<std::array<Vec3, 3>> corners = subject([&] {
+    const TriangleMesh placed = place_mesh(sphere, mirror);
+    std::vector<std::array<Vec3, 3>> each;
+    for (const auto& c : placed.triangles) each.push_back({placed.positions[c[0]], placed.positions[c[1]], placed.positions[c[2]]});
+    return each;
+  });
+  EXPECT_EQ(corners.size(), sphere.triangles.size());
+  for (const auto& [p0, p1, p2] : corners) {
     EXPECT_GT(glm::dot(glm::cross(p1 - p0, p2 - p0), p0 + p1 + p2), 0.0f);
   }
 }
@@ -213,7 +226,7 @@ TEST(MeshPlacement, QuadsSplitAlongTheFirstDiagonal) {
   SceneDescription d;
   d.materials.push_back(Material{});
   d.shapes.push_back(Shape{"quad", quad, 0});
-  const auto hit = WhittedScene(d).closest_hit(Ray{Vec3(0.75f, 0.25f, -1), Vec3(0, 0, 1)}, Interval::positive());
+  const auto hit = subject([&] { return WhittedScene(d).closest_hit(Ray{Vec3(0.75f, 0.25f, -1), Vec3(0, 0, 1)}, Interval::positive()); });
   ASSERT_TRUE(hit);
   EXPECT_EQ(hit->triangle, 0);
   EXPECT_NEAR(hit->point.z, 0.125f, 1e-6f);  // plane z = y / 2 there
@@ -230,7 +243,7 @@ TEST(MeshPlacement, InterpolatedShadingNormalMatchesTheSphere) {
   for (int i = -7; i <= 7; ++i)
     for (int j = -7; j <= 7; ++j) {
       if (i * i + j * j > 49) continue;  // inside radius 0.7, well within the silhouette
-      const auto hit = scene.closest_hit(Ray{Vec3(0.1f * i, 0.1f * j, -5), Vec3(0, 0, 1)}, Interval::positive());
+      const auto hit = subject([&] { return scene.closest_hit(Ray{Vec3(0.1f * i, 0.1f * j, -5), Vec3(0, 0, 1)}, Interval::positive()); });
       ASSERT_TRUE(hit);
       const Vec3 radial = glm::normalize(hit->point);
       smooth_error += glm::length(hit->shading_normal - radial);

@@ -4,10 +4,17 @@
 #include "02-whitted/whitted_scene.h"
 #include "common/random.h"
 
+#include "support/subject.h"
 #include <gtest/gtest.h>
 
 namespace rt {
+
+inline auto record_fields(ShadowErrors& e) { return std::tie(e.pixels, e.acne, e.leaks); }
+inline auto record_fields(ShadowRay& s) { return std::tie(s.ray, s.range.min, s.range.max); }
+
 namespace {
+
+using testing::subject;
 
 // The scale sweep (stages/experiments/acne_experiment.h), 64 x 48 pixels per scale.
 constexpr float kScales[] = {1e-3f, 1.0f, 1e3f, 1e5f};
@@ -15,7 +22,7 @@ constexpr int kWidth = 64, kHeight = 48;
 
 TEST(ShadowAcne, ErrorBoundOffsetIsRightAtEveryScale) {
   for (const float scale : kScales) {
-    const ShadowErrors e = count_shadow_errors(scale, OffsetPolicy{OffsetMethod::error_bound}, kWidth, kHeight);
+    const ShadowErrors e = subject([&] { return count_shadow_errors(scale, OffsetPolicy{OffsetMethod::error_bound}, kWidth, kHeight); });
     EXPECT_GT(e.pixels, kWidth * kHeight / 2) << "the scene fills the picture";
     EXPECT_EQ(e.acne, 0) << "scale " << scale;
     EXPECT_EQ(e.leaks, 0) << "scale " << scale;
@@ -33,7 +40,7 @@ TEST(ShadowAcne, TheErrorBoundOriginClearsTheErrorBoxInEveryCoordinate) {
     hit.point = (Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f) * std::pow(10.0f, rng.uniform() * 6.0f - 2.0f);
     hit.normal = glm::normalize(Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f);
     hit.point_error = glm::abs(hit.point) * (1e-6f * (1.0f + rng.uniform()));
-    const Vec3 origin = offset_ray_origin(hit, hit.normal, OffsetPolicy{});
+    const Vec3 origin = subject([&] { return offset_ray_origin(hit, hit.normal, OffsetPolicy{}); });
     const double d = glm::dot(glm::dvec3(glm::abs(hit.normal)), glm::dvec3(hit.point_error));
     for (int i = 0; i < 3; ++i) {
       const double moved = (double(origin[i]) - double(hit.point[i])) * (hit.normal[i] < 0.0f ? -1.0 : 1.0);
@@ -49,7 +56,7 @@ TEST(ShadowAcne, IntegerUlpOffsetIsRightFromUnitScaleUp) {
   // Waechter & Binder's 1/65536 near the origin is an absolute distance, so far below unit
   // scale it can leak; docs/stage2.md shows where.
   for (const float scale : {1.0f, 1e3f, 1e5f}) {
-    const ShadowErrors e = count_shadow_errors(scale, OffsetPolicy{OffsetMethod::integer_ulp}, kWidth, kHeight);
+    const ShadowErrors e = subject([&] { return count_shadow_errors(scale, OffsetPolicy{OffsetMethod::integer_ulp}, kWidth, kHeight); });
     EXPECT_EQ(e.wrong(), 0) << "scale " << scale;
   }
 }
@@ -60,12 +67,12 @@ TEST(ShadowAcne, EveryFixedEpsilonFailsAtSomeScale) {
   for (const float epsilon : {1e-5f, 1e-4f, 1e-2f, 1.0f}) {
     int worst = 0;
     for (const float scale : kScales)
-      worst = std::max(worst, count_shadow_errors(scale, OffsetPolicy{OffsetMethod::fixed, epsilon}, kWidth, kHeight).wrong());
+      worst = std::max(worst, subject([&] { return count_shadow_errors(scale, OffsetPolicy{OffsetMethod::fixed, epsilon}, kWidth, kHeight); }).wrong());
     EXPECT_GT(worst, 0) << "epsilon " << epsilon;
   }
-  const ShadowErrors large = count_shadow_errors(1e5f, OffsetPolicy{OffsetMethod::fixed, 1e-4f}, kWidth, kHeight);
+  const ShadowErrors large = subject([&] { return count_shadow_errors(1e5f, OffsetPolicy{OffsetMethod::fixed, 1e-4f}, kWidth, kHeight); });
   EXPECT_GT(large.acne, large.pixels / 20) << "1e-4 at scale 1e5 is below one ulp: acne everywhere lit";
-  const ShadowErrors small = count_shadow_errors(1e-3f, OffsetPolicy{OffsetMethod::fixed, 1.0f}, kWidth, kHeight);
+  const ShadowErrors small = subject([&] { return count_shadow_errors(1e-3f, OffsetPolicy{OffsetMethod::fixed, 1.0f}, kWidth, kHeight); });
   EXPECT_GT(small.leaks, 0) << "an offset of 1 at scale 1e-3 starts shadow rays above the ball";
 }
 
@@ -95,12 +102,13 @@ TEST(SelfIntersection, SpawnedRaysNeverRehitTheirOwnSurface) {
     const WhittedScene scene(d);
     // Aim from a random point well away from the shape at a point near its middle.
     const Vec3 from = position + Vec3(rng.uniform() - 0.5f, 3.0f, rng.uniform() - 0.5f) * (4.0f * scale);
-    const std::optional<Hit> first = scene.closest_hit(Ray{from, glm::normalize(middle - from)}, Interval::positive());
+    const std::optional<Hit> first =
+        subject([&] { return scene.closest_hit(Ray{from, glm::normalize(middle - from)}, Interval::positive()); });
     if (!first) continue;
     for (int i = 0; i < 100; ++i) {
       const Vec3 w = glm::normalize(Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f);
-      const Ray spawned = spawn_ray(*first, w, OffsetPolicy{});
-      const std::optional<Hit> again = scene.closest_hit(spawned, Interval::positive());
+      const std::optional<Hit> again =
+          subject([&] { return scene.closest_hit(spawn_ray(*first, w, OffsetPolicy{}), Interval::positive()); });
       // Leaving a sphere, or through either side of a square: nothing to hit. Into a sphere: only
       // its far side, a chord 2 r |w.n| away.
       if (again) {
@@ -124,12 +132,14 @@ TEST(SelfIntersection, RefractedRayLeavesThroughTheBackOfAThinSlab) {
     d.shapes.push_back(Shape{"top", Quad{{Vec3(-w, h, -w), Vec3(-w, h, w), Vec3(w, h, w), Vec3(w, h, -w)}}, 0});
     d.shapes.push_back(Shape{"bottom", Quad{{Vec3(-w, 0, -w), Vec3(w, 0, -w), Vec3(w, 0, w), Vec3(-w, 0, w)}}, 0});
     const WhittedScene scene(d);
-    const std::optional<Hit> top = scene.closest_hit(Ray{Vec3(0.1f * w, 2 * w, 0.2f * w), glm::normalize(Vec3(0.3f, -1, 0.1f))},
-                                                     Interval::positive());
+    const std::optional<Hit> top = subject([&] {
+      return scene.closest_hit(Ray{Vec3(0.1f * w, 2 * w, 0.2f * w), glm::normalize(Vec3(0.3f, -1, 0.1f))}, Interval::positive());
+    });
     ASSERT_TRUE(top);
     ASSERT_EQ(top->primitive, 0);
-    const Ray inside = spawn_ray(*top, glm::normalize(Vec3(0.2f, -1, 0.07f)), OffsetPolicy{});
-    const std::optional<Hit> next = scene.closest_hit(inside, Interval::positive());
+    const std::optional<Hit> next = subject([&] {
+      return scene.closest_hit(spawn_ray(*top, glm::normalize(Vec3(0.2f, -1, 0.07f)), OffsetPolicy{}), Interval::positive());
+    });
     ASSERT_TRUE(next) << "scale " << scale;
     EXPECT_EQ(next->primitive, 1) << "scale " << scale;
   }
@@ -139,7 +149,7 @@ TEST(SelfIntersection, ShadowRayStopsJustShortOfTheLight) {
   Hit hit;
   hit.point = Vec3(0);
   hit.normal = hit.shading_normal = Vec3(0, 1, 0);
-  const ShadowRay shadow = spawn_shadow_ray(hit, Vec3(0, 10, 0), OffsetPolicy{OffsetMethod::fixed, 1e-3f});
+  const ShadowRay shadow = subject([&] { return spawn_shadow_ray(hit, Vec3(0, 10, 0), OffsetPolicy{OffsetMethod::fixed, 1e-3f}); });
   EXPECT_EQ(shadow.ray.origin, Vec3(0, 1e-3f, 0));
   EXPECT_EQ(shadow.ray.direction, Vec3(0, 1, 0));
   EXPECT_NEAR(shadow.range.max, (10.0f - 1e-3f) * (1.0f - kShadowEpsilon), 1e-5f);
@@ -153,11 +163,11 @@ TEST(SelfIntersection, OffsetsMoveTheOriginToTheSideTheRayLeaves) {
   hit.point_error = Vec3(1e-4f, 2e-4f, 0.0f);
   for (const OffsetMethod method : {OffsetMethod::error_bound, OffsetMethod::integer_ulp, OffsetMethod::fixed}) {
     const OffsetPolicy policy{method, 1e-3f};
-    EXPECT_GT(glm::dot(offset_ray_origin(hit, hit.normal, policy) - hit.point, hit.normal), 0.0f);
-    EXPECT_LT(glm::dot(offset_ray_origin(hit, -hit.normal, policy) - hit.point, hit.normal), 0.0f);
+    EXPECT_GT(glm::dot(subject([&] { return offset_ray_origin(hit, hit.normal, policy); }) - hit.point, hit.normal), 0.0f);
+    EXPECT_LT(glm::dot(subject([&] { return offset_ray_origin(hit, -hit.normal, policy); }) - hit.point, hit.normal), 0.0f);
   }
   // The error box reaches |n|.e = (1e-4 + 2e-4) / sqrt(2) along the normal.
-  const Vec3 moved = offset_ray_origin(hit, hit.normal, OffsetPolicy{}) - hit.point;
+  const Vec3 moved = subject([&] { return offset_ray_origin(hit, hit.normal, OffsetPolicy{}); }) - hit.point;
   EXPECT_GE(glm::dot(moved, hit.normal), 3e-4f / std::sqrt(2.0f) * 0.99f);
   EXPECT_LT(glm::dot(moved, hit.normal), 3e-4f / std::sqrt(2.0f) + 3e-4f) << "plus an ulp per coordinate";
 }

@@ -1,9 +1,12 @@
 #include "02-whitted/optics.h"
 
+#include "support/subject.h"
 #include <gtest/gtest.h>
 
 namespace rt {
 namespace {
+
+using testing::subject;
 
 // A unit direction travelling towards the surface z = 0 from above (normal +z), at angle theta
 // from the normal, in the xz plane.
@@ -12,14 +15,14 @@ const Vec3 kUp(0, 0, 1);
 
 TEST(Optics, ReflectionMirrorsTheDirectionAboutTheNormal) {
   for (const float theta : {0.0f, 0.3f, 1.0f, 1.5f}) {
-    const Vec3 r = reflect(incoming(theta), kUp);
+    const Vec3 r = subject([&] { return reflect(incoming(theta), kUp); });
     EXPECT_NEAR(r.x, std::sin(theta), 1e-6f);
     EXPECT_NEAR(r.y, 0.0f, 1e-6f);
     EXPECT_NEAR(r.z, std::cos(theta), 1e-6f) << "angle of reflection = angle of incidence";
   }
   // Any normal, any direction: the tangential part is kept, the normal part flips.
   const Vec3 n = glm::normalize(Vec3(1, 2, 3)), d = glm::normalize(Vec3(-2, 0.5f, -1));
-  const Vec3 r = reflect(d, n);
+  const Vec3 r = subject([&] { return reflect(d, n); });
   EXPECT_NEAR(glm::dot(r, n), -glm::dot(d, n), 1e-6f);
   EXPECT_NEAR(glm::length(r - glm::dot(r, n) * n - (d - glm::dot(d, n) * n)), 0.0f, 1e-6f);
 }
@@ -27,7 +30,7 @@ TEST(Optics, ReflectionMirrorsTheDirectionAboutTheNormal) {
 TEST(Optics, RefractionObeysSnellsLaw) {
   for (const auto& [eta_i, eta_t] : {std::pair{1.0f, 1.5f}, std::pair{1.5f, 1.0f}, std::pair{1.0f, 2.4f}}) {
     for (const float theta : {0.0f, 0.2f, 0.5f, 0.7f}) {
-      const auto t = refract(incoming(theta), kUp, eta_i, eta_t);
+      const auto t = subject([&] { return refract(incoming(theta), kUp, eta_i, eta_t); });
       ASSERT_TRUE(t) << "no total internal reflection at " << theta;
       EXPECT_NEAR(glm::length(*t), 1.0f, 1e-6f);
       EXPECT_LT(t->z, 0.0f) << "the refracted ray goes through the surface";
@@ -41,31 +44,31 @@ TEST(Optics, RefractionObeysSnellsLaw) {
 
 TEST(Optics, TotalInternalReflectionBeyondTheCriticalAngle) {
   const float critical = std::asin(1.0f / 1.5f);  // 41.8 degrees from glass into air
-  EXPECT_TRUE(refract(incoming(critical - 0.01f), kUp, 1.5f, 1.0f));
-  EXPECT_FALSE(refract(incoming(critical + 0.01f), kUp, 1.5f, 1.0f));
-  EXPECT_FALSE(refract(incoming(1.4f), kUp, 1.5f, 1.0f));
-  EXPECT_EQ(fresnel_dielectric(std::cos(critical + 0.01f), 1.5f, 1.0f), 1.0f);
-  EXPECT_EQ(fresnel_schlick(std::cos(critical + 0.01f), 1.5f, 1.0f), 1.0f);
+  EXPECT_TRUE(subject([&] { return refract(incoming(critical - 0.01f), kUp, 1.5f, 1.0f); }));
+  EXPECT_FALSE(subject([&] { return refract(incoming(critical + 0.01f), kUp, 1.5f, 1.0f); }));
+  EXPECT_FALSE(subject([&] { return refract(incoming(1.4f), kUp, 1.5f, 1.0f); }));
+  EXPECT_EQ(subject([&] { return fresnel_dielectric(std::cos(critical + 0.01f), 1.5f, 1.0f); }), 1.0f);
+  EXPECT_EQ(subject([&] { return fresnel_schlick(std::cos(critical + 0.01f), 1.5f, 1.0f); }), 1.0f);
   // Entering the denser medium there is no critical angle.
-  EXPECT_TRUE(refract(incoming(1.55f), kUp, 1.0f, 1.5f));
+  EXPECT_TRUE(subject([&] { return refract(incoming(1.55f), kUp, 1.0f, 1.5f); }));
 }
 
 TEST(Optics, FresnelAtNormalIncidence) {
-  EXPECT_NEAR(fresnel_dielectric(1.0f, 1.0f, 1.5f), 0.04f, 1e-6f);
-  EXPECT_NEAR(fresnel_dielectric(1.0f, 1.5f, 1.0f), 0.04f, 1e-6f) << "the same from inside";
-  EXPECT_NEAR(fresnel_schlick(1.0f, 1.0f, 1.5f), 0.04f, 1e-6f);
-  EXPECT_NEAR(fresnel_dielectric(1.0f, 1.0f, 1.333f), 0.0204f, 1e-4f) << "water";
-  EXPECT_NEAR(fresnel_dielectric(1.0f, 1.0f, 1.0f), 0.0f, 1e-7f) << "no interface, no reflection";
+  EXPECT_NEAR(subject([&] { return fresnel_dielectric(1.0f, 1.0f, 1.5f); }), 0.04f, 1e-6f);
+  EXPECT_NEAR(subject([&] { return fresnel_dielectric(1.0f, 1.5f, 1.0f); }), 0.04f, 1e-6f) << "the same from inside";
+  EXPECT_NEAR(subject([&] { return fresnel_schlick(1.0f, 1.0f, 1.5f); }), 0.04f, 1e-6f);
+  EXPECT_NEAR(subject([&] { return fresnel_dielectric(1.0f, 1.0f, 1.333f); }), 0.0204f, 1e-4f) << "water";
+  EXPECT_NEAR(subject([&] { return fresnel_dielectric(1.0f, 1.0f, 1.0f); }), 0.0f, 1e-7f) << "no interface, no reflection";
 }
 
 TEST(Optics, FresnelAtGrazingIncidenceIsTotal) {
-  EXPECT_NEAR(fresnel_dielectric(0.0f, 1.0f, 1.5f), 1.0f, 1e-6f);
-  EXPECT_NEAR(fresnel_schlick(0.0f, 1.0f, 1.5f), 1.0f, 1e-6f);
-  EXPECT_GT(fresnel_dielectric(std::cos(1.5f), 1.0f, 1.5f), 0.6f);
+  EXPECT_NEAR(subject([&] { return fresnel_dielectric(0.0f, 1.0f, 1.5f); }), 1.0f, 1e-6f);
+  EXPECT_NEAR(subject([&] { return fresnel_schlick(0.0f, 1.0f, 1.5f); }), 1.0f, 1e-6f);
+  EXPECT_GT(subject([&] { return fresnel_dielectric(std::cos(1.5f), 1.0f, 1.5f); }), 0.6f);
   // It rises monotonically from normal to grazing incidence (entering glass).
   float previous = 0.0f;
   for (int i = 0; i <= 90; ++i) {
-    const float f = fresnel_dielectric(std::cos(radians(float(i))), 1.0f, 1.5f);
+    const float f = subject([&] { return fresnel_dielectric(std::cos(radians(float(i))), 1.0f, 1.5f); });
     EXPECT_GE(f, previous - 1e-6f) << i << " degrees";
     previous = f;
   }
@@ -88,7 +91,7 @@ TEST(Optics, ReflectedPlusTransmittedIsOne) {
     for (int degrees = 0; degrees < 90; degrees += 5) {
       const float cos_i = std::cos(radians(float(degrees)));
       if (n_i > n_t && std::sqrt(1 - cos_i * cos_i) * n_i / n_t >= 1.0f) continue;  // total reflection
-      EXPECT_NEAR(fresnel_dielectric(cos_i, n_i, n_t) + transmittance(cos_i, n_i, n_t), 1.0, 2e-6)
+      EXPECT_NEAR(subject([&] { return fresnel_dielectric(cos_i, n_i, n_t); }) + transmittance(cos_i, n_i, n_t), 1.0, 2e-6)
           << n_i << " -> " << n_t << " at " << degrees << " degrees";
     }
   }
@@ -99,16 +102,16 @@ TEST(Optics, BrewsterAngleReflectsNoParallelPolarization) {
   const float theta_b = std::atan(1.5f);
   const float cos_t = std::cos(std::asin(std::sin(theta_b) / 1.5f));
   const float r_s = (std::cos(theta_b) - 1.5f * cos_t) / (std::cos(theta_b) + 1.5f * cos_t);
-  EXPECT_NEAR(fresnel_dielectric(std::cos(theta_b), 1.0f, 1.5f), 0.5f * r_s * r_s, 1e-6f);
+  EXPECT_NEAR(subject([&] { return fresnel_dielectric(std::cos(theta_b), 1.0f, 1.5f); }), 0.5f * r_s * r_s, 1e-6f);
 }
 
 TEST(Optics, ReflectanceIsTheSameBothWaysThroughTheInterface) {
   // Stokes: light entering at theta_i and light leaving at the matching theta_t reflect alike.
   for (const float theta_i : {0.1f, 0.5f, 0.9f, 1.3f}) {
     const float theta_t = std::asin(std::sin(theta_i) / 1.5f);
-    EXPECT_NEAR(fresnel_dielectric(std::cos(theta_i), 1.0f, 1.5f),
-                fresnel_dielectric(std::cos(theta_t), 1.5f, 1.0f), 1e-6f);
-    EXPECT_NEAR(fresnel_schlick(std::cos(theta_i), 1.0f, 1.5f), fresnel_schlick(std::cos(theta_t), 1.5f, 1.0f), 1e-6f)
+    EXPECT_NEAR(subject([&] { return fresnel_dielectric(std::cos(theta_i), 1.0f, 1.5f); }),
+                subject([&] { return fresnel_dielectric(std::cos(theta_t), 1.5f, 1.0f); }), 1e-6f);
+    EXPECT_NEAR(subject([&] { return fresnel_schlick(std::cos(theta_i), 1.0f, 1.5f); }), subject([&] { return fresnel_schlick(std::cos(theta_t), 1.5f, 1.0f); }), 1e-6f)
         << "Schlick measures the angle on the thinner side";
   }
 }
@@ -119,7 +122,7 @@ TEST(Optics, SchlickStaysCloseToExactForGlass) {
   float worst = 0.0f;
   for (int i = 0; i <= 900; ++i) {
     const float cos_i = std::cos(radians(float(i) * 0.1f));
-    worst = std::max(worst, std::abs(fresnel_schlick(cos_i, 1.0f, 1.5f) - fresnel_dielectric(cos_i, 1.0f, 1.5f)));
+    worst = std::max(worst, std::abs(subject([&] { return fresnel_schlick(cos_i, 1.0f, 1.5f); }) - subject([&] { return fresnel_dielectric(cos_i, 1.0f, 1.5f); })));
   }
   EXPECT_LT(worst, 0.037f);
   EXPECT_GT(worst, 0.001f) << "they are different formulas";

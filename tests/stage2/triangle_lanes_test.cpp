@@ -5,12 +5,15 @@
 #include "stage2/aimed_rays.h"
 #include "support/test_support.h"
 
+#include "stage2/records.h"
+#include "support/subject.h"
 #include <gtest/gtest.h>
 
 namespace rt {
 namespace {
 
 using testing::same_bits;
+using testing::subject;
 
 // Counts the cases where the two tests disagree (a hit against a miss, or any bit of t, b1, b2),
 // and how many of the cases were hits, so that a test can insist on both kinds.
@@ -18,10 +21,11 @@ struct LaneAgreement {
   int cases = 0, hits = 0, disagreements = 0;
 
   void check(const Ray& ray, Vec3 v0, Vec3 v1, Vec3 v2, Interval range) {
-    const TriangleRay prepared(ray);
-    const std::optional<TriangleHit> scalar = intersect_triangle_watertight(prepared.watertight, v0, v1, v2, range);
-    const std::optional<TriangleHit> lanes =
-        intersect_triangle_lanes(prepared.watertight, prepared.lanes, TriangleCorners(v0, v1, v2), range);
+    const auto [scalar, lanes] = subject([&] {
+      const TriangleRay prepared(ray);
+      return std::pair(intersect_triangle_watertight(prepared.watertight, v0, v1, v2, range),
+                       intersect_triangle_lanes(prepared.watertight, prepared.lanes, TriangleCorners(v0, v1, v2), range));
+    });
     ++cases;
     hits += scalar.has_value();
     const bool same = scalar.has_value() == lanes.has_value() &&
@@ -81,8 +85,8 @@ TEST(TriangleLanes, AnswersAsTheWatertightTestOnEdgesAndCorners) {
 TEST(TriangleLanes, NoRayPassesThroughSharedEdges) {
   for (const float scale : {1e-3f, 1.0f, 1e3f, 1e5f}) {
     const LeakSetup setup = make_leak_setup(scale, 4, 2024);
-    EXPECT_EQ(count_leaks(setup.mesh, setup.edge_rays, TriangleMethod::watertight_lanes), 0) << "scale " << scale;
-    EXPECT_EQ(count_leaks(setup.mesh, setup.vertex_rays, TriangleMethod::watertight_lanes), 0) << "scale " << scale;
+    EXPECT_EQ(subject([&] { return count_leaks(setup.mesh, setup.edge_rays, TriangleMethod::watertight_lanes); }), 0) << "scale " << scale;
+    EXPECT_EQ(subject([&] { return count_leaks(setup.mesh, setup.vertex_rays, TriangleMethod::watertight_lanes); }), 0) << "scale " << scale;
   }
 }
 

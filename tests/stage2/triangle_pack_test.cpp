@@ -4,6 +4,8 @@
 #include "02-whitted/triangle_ray.h"
 #include "experiments/triangle_leaks.h"
 #include "stage2/aimed_rays.h"
+#include "stage2/records.h"
+#include "support/subject.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
@@ -14,6 +16,7 @@ namespace rt {
 namespace {
 
 using testing::same_bits;
+using testing::subject;
 
 using Corners = std::array<Vec3, 3>;
 
@@ -42,10 +45,11 @@ struct PackAgreement {
   int cases = 0, hits = 0, disagreements = 0;
 
   std::optional<PackHit> check(const Ray& ray, const Corners* triangles, int count, Interval range) {
-    const TriangleRay prepared(ray);
-    const std::optional<PackHit> expected = one_at_a_time(prepared, triangles, count, range);
-    const std::optional<PackHit> pack =
-        intersect_triangle_pack(prepared.watertight, prepared.lanes, pack_of(triangles, count), range);
+    const auto [expected, pack] = subject([&] {
+      const TriangleRay prepared(ray);
+      return std::pair(one_at_a_time(prepared, triangles, count, range),
+                       intersect_triangle_pack(prepared.watertight, prepared.lanes, pack_of(triangles, count), range));
+    });
     ++cases;
     hits += expected.has_value();
     const bool same = expected.has_value() == pack.has_value() &&
@@ -141,21 +145,26 @@ TEST(TrianglePack, ATieGoesToTheLowestLane) {
   const Corners near{{{-1, -1, 2}, {1, -1, 2}, {0, 1, 2}}};
   const Corners aside{{{10, 10, 1}, {11, 10, 1}, {10, 11, 1}}};
   const Ray ray{Vec3(0, 0, 0), Vec3(0, 0, 1)};
-  const TriangleRay prepared(ray);
   const Corners twins[4] = {far, near, aside, near};
-  const auto hit = intersect_triangle_pack(prepared.watertight, prepared.lanes, pack_of(twins, 4), Interval::positive());
+  const auto pack = [&](const Corners* triangles, int count, Interval range) {
+    return subject([&] {
+      const TriangleRay prepared(ray);
+      return intersect_triangle_pack(prepared.watertight, prepared.lanes, pack_of(triangles, count), range);
+    });
+  };
+  const auto hit = pack(twins, 4, Interval::positive());
   ASSERT_TRUE(hit.has_value());
   EXPECT_EQ(hit->lane, 1);
   EXPECT_EQ(hit->t, 2.0f);
   const Corners two[2] = {near, far};
-  const auto partial = intersect_triangle_pack(prepared.watertight, prepared.lanes, pack_of(two, 2), Interval::positive());
+  const auto partial = pack(two, 2, Interval::positive());
   ASSERT_TRUE(partial.has_value());
   EXPECT_EQ(partial->lane, 0);
   // A range that ends before the nearest hit leaves the next one; one that ends at it, none nearer.
-  const auto beyond = intersect_triangle_pack(prepared.watertight, prepared.lanes, pack_of(twins, 4), Interval{2.0f, 10.0f});
+  const auto beyond = pack(twins, 4, Interval{2.0f, 10.0f});
   ASSERT_TRUE(beyond.has_value());
   EXPECT_EQ(beyond->lane, 0);
-  EXPECT_FALSE(intersect_triangle_pack(prepared.watertight, prepared.lanes, pack_of(twins, 4), Interval{0.0f, 2.0f}));
+  EXPECT_FALSE(pack(twins, 4, Interval{0.0f, 2.0f}));
 }
 
 }  // namespace

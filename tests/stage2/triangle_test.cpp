@@ -2,10 +2,14 @@
 #include "experiments/triangle_leaks.h"
 #include "common/random.h"
 
+#include "stage2/records.h"
+#include "support/subject.h"
 #include <gtest/gtest.h>
 
 namespace rt {
 namespace {
+
+using testing::subject;
 
 struct TriangleTest {
   const char* name;
@@ -18,7 +22,7 @@ class BothTriangleTests : public ::testing::TestWithParam<TriangleTest> {
  protected:
   std::optional<TriangleHit> hit(const Ray& ray, Vec3 v0, Vec3 v1, Vec3 v2,
                                  Interval range = Interval::positive()) const {
-    return intersect_triangle(GetParam().method, ray, v0, v1, v2, range);
+    return subject([&] { return intersect_triangle(GetParam().method, ray, v0, v1, v2, range); });
   }
   std::optional<TriangleHit> hit(const Ray& ray, Interval range = Interval::positive()) const {
     return hit(ray, kV0, kV1, kV2, range);
@@ -149,16 +153,16 @@ TEST(WatertightBound, RaysFromOnATriangleNeverHitItAndRaysFromJustAboveDo) {
       Vec3 d = glm::normalize(Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f);
       if (k == 0) d = glm::normalize(d - glm::dot(d, normal) * normal + 1e-3f * normal);
       ++rays;
-      self_hits += intersect_triangle_watertight(Ray{on, d}, v0, v1, v2, Interval::positive()).has_value();
+      self_hits += subject([&] { return intersect_triangle_watertight(Ray{on, d}, v0, v1, v2, Interval::positive()); }).has_value();
     }
     // Well shaped (area at least a tenth of the longest edge squared): from just above, a hit.
     const float longest = std::max({glm::length(v1 - v0), glm::length(v2 - v1), glm::length(v0 - v2)});
     if (0.5f * glm::length(cross) < 0.1f * longest * longest) continue;
     ++well_shaped;
     const Vec3 above = on + 1e-3f * longest * normal;
-    near_misses += !intersect_triangle_watertight(Ray{above, -normal}, v0, v1, v2, Interval::positive());
-    near_misses += !intersect_triangle_watertight(Ray{on - 1e-3f * longest * normal, normal}, v0, v1, v2,
-                                                  Interval::positive());
+    near_misses += !subject([&] { return intersect_triangle_watertight(Ray{above, -normal}, v0, v1, v2, Interval::positive()); });
+    near_misses += !subject([&] { return intersect_triangle_watertight(Ray{on - 1e-3f * longest * normal, normal}, v0, v1, v2,
+                                                  Interval::positive()); });
   }
   EXPECT_EQ(self_hits, 0) << "of " << rays << " rays that start on a triangle";
   EXPECT_GT(well_shaped, 1000);
@@ -214,7 +218,7 @@ TEST(WatertightBound, TheRefusalThresholdIsTheBoundOfTheShearedCorners) {
     // The true t from the origin as rounded, and the bound the rule uses for it.
     const double t = glm::dot(glm::dvec3(v0) - glm::dvec3(origin), normal) / glm::dot(glm::dvec3(d), normal);
     const double bound = bound_from(origin);
-    const bool reported = intersect_triangle_watertight(Ray{origin, d}, v0, v1, v2, Interval::positive()).has_value();
+    const bool reported = subject([&] { return intersect_triangle_watertight(Ray{origin, d}, v0, v1, v2, Interval::positive()); }).has_value();
     if (t < 0.8 * bound) {
       ++refused;
       EXPECT_FALSE(reported) << "ray " << i << ": t = " << t << " is below 0.8 of its error bound " << bound;
@@ -234,8 +238,8 @@ class Watertight : public ::testing::TestWithParam<float> {};
 
 TEST_P(Watertight, NoRayPassesThroughTheWatertightTest) {
   const LeakSetup setup = make_leak_setup(GetParam(), 4, 2024);
-  EXPECT_EQ(count_leaks(setup.mesh, setup.edge_rays, TriangleMethod::watertight), 0);
-  EXPECT_EQ(count_leaks(setup.mesh, setup.vertex_rays, TriangleMethod::watertight), 0);
+  EXPECT_EQ(subject([&] { return count_leaks(setup.mesh, setup.edge_rays, TriangleMethod::watertight); }), 0);
+  EXPECT_EQ(subject([&] { return count_leaks(setup.mesh, setup.vertex_rays, TriangleMethod::watertight); }), 0);
 }
 
 // Moeller-Trumbore leaks; the test pins the count measured when this was written (docs/stage2.md
@@ -249,8 +253,8 @@ constexpr MeasuredLeaks kMollerTrumboreLeaks[] = {{1e-3f, 260, 24}, {1.0f, 250, 
 
 TEST_P(Watertight, MollerTrumboreLeaksNoMoreThanMeasured) {
   const LeakSetup setup = make_leak_setup(GetParam(), 4, 2024);
-  const int edge = count_leaks(setup.mesh, setup.edge_rays, TriangleMethod::moller_trumbore);
-  const int vertex = count_leaks(setup.mesh, setup.vertex_rays, TriangleMethod::moller_trumbore);
+  const int edge = subject([&] { return count_leaks(setup.mesh, setup.edge_rays, TriangleMethod::moller_trumbore); });
+  const int vertex = subject([&] { return count_leaks(setup.mesh, setup.vertex_rays, TriangleMethod::moller_trumbore); });
   for (const MeasuredLeaks& m : kMollerTrumboreLeaks)
     if (m.scale == GetParam()) {
       EXPECT_LE(edge, m.edge);

@@ -3,12 +3,14 @@
 
 #include "support/test_support.h"
 
+#include "support/subject.h"
 #include <gtest/gtest.h>
 
 namespace rt {
 namespace {
 
 using testing::source_path;
+using testing::subject;
 
 Material mirror(Color reflectance) {
   Material m;
@@ -48,9 +50,9 @@ TEST(Whitted, MirrorShowsWhatItFacesTimesItsReflectance) {
                                     {Shape{"mirror", Quad{{Vec3(-1, -1, 2), Vec3(-1, 1, 2), Vec3(1, 1, 2), Vec3(1, -1, 2)}}, 0}},
                                     background));
   const Ray ray{Vec3(0.1f, 0.2f, 0), glm::normalize(Vec3(0.1f, 0, 1))};
-  const Color seen = whitted_radiance(scene, ray, depth(5));
+  const Color seen = subject([&] { return whitted_radiance(scene, ray, depth(5)); });
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(seen[c], reflectance[c] * background[c], 1e-6f);
-  EXPECT_EQ(whitted_radiance(scene, ray, depth(0)), Color(0.0f)) << "no bounce allowed: black";
+  EXPECT_EQ(subject([&] { return whitted_radiance(scene, ray, depth(0)); }), Color(0.0f)) << "no bounce allowed: black";
 }
 
 // Two 2 x 2 mirrors of reflectance 0.5 facing each other at z = 0 and z = 2, white all round.
@@ -66,12 +68,12 @@ TEST(Whitted, TwoFacingMirrorsStopAtTheDepthLimit) {
   // every depth limit gives black. A slanted ray escapes after the bounces it needs, each
   // weighted by the reflectance 0.5.
   const WhittedScene scene(facing_mirrors());
-  EXPECT_EQ(whitted_radiance(scene, Ray{Vec3(0, 0, 1), Vec3(0, 0, 1)}, depth(50)), Color(0.0f));
+  EXPECT_EQ(subject([&] { return whitted_radiance(scene, Ray{Vec3(0, 0, 1), Vec3(0, 0, 1)}, depth(50)); }), Color(0.0f));
   // From (0.5, 0, 1) at 45 degrees in x: hits z = 2 at x = 1.5 > 1: escapes at once.
   // Aimed more steeply, slope 0.3 per unit z: x = 0.5, 0.8, 1.4 -> hits at x = 0.8, then escapes.
   const Ray steep{Vec3(0.5f, 0, 1), glm::normalize(Vec3(0.3f, 0, 1))};
-  EXPECT_NEAR(whitted_radiance(scene, steep, depth(5)).r, 0.5f, 1e-6f);
-  EXPECT_EQ(whitted_radiance(scene, steep, depth(0)), Color(0.0f));
+  EXPECT_NEAR(subject([&] { return whitted_radiance(scene, steep, depth(5)); }).r, 0.5f, 1e-6f);
+  EXPECT_EQ(subject([&] { return whitted_radiance(scene, steep, depth(0)); }), Color(0.0f));
 }
 
 TEST(Whitted, BranchPruningWeighsEachBranchByTheReflectancesBehindIt) {
@@ -80,9 +82,9 @@ TEST(Whitted, BranchPruningWeighsEachBranchByTheReflectancesBehindIt) {
   // above that prunes it (black), and one at or below it does not.
   const WhittedScene scene(facing_mirrors());
   const Ray ray{Vec3(-0.9f, 0, 1), glm::normalize(Vec3(0.3f, 0, 1))};
-  EXPECT_NEAR(whitted_radiance(scene, ray, depth(10, FresnelModel::exact, 0.1f)).r, 0.125f, 1e-6f);
-  EXPECT_NEAR(whitted_radiance(scene, ray, depth(10, FresnelModel::exact, 0.125f)).r, 0.125f, 1e-6f);
-  EXPECT_EQ(whitted_radiance(scene, ray, depth(10, FresnelModel::exact, 0.2f)), Color(0.0f));
+  EXPECT_NEAR(subject([&] { return whitted_radiance(scene, ray, depth(10, FresnelModel::exact, 0.1f)); }).r, 0.125f, 1e-6f);
+  EXPECT_NEAR(subject([&] { return whitted_radiance(scene, ray, depth(10, FresnelModel::exact, 0.125f)); }).r, 0.125f, 1e-6f);
+  EXPECT_EQ(subject([&] { return whitted_radiance(scene, ray, depth(10, FresnelModel::exact, 0.2f)); }), Color(0.0f));
 }
 
 // A glass ball in a uniform environment neither absorbs nor emits, so with R + T = 1 at every
@@ -95,7 +97,7 @@ TEST(Whitted, GlassBallInAUniformEnvironmentDisappears) {
   for (const FresnelModel model : {FresnelModel::exact, FresnelModel::schlick})
     for (int i = -17; i <= 17; ++i) {
       const Ray ray{Vec3(0.05f * float(i), 0.01f * float(i), -5), Vec3(0, 0, 1)};
-      const Color seen = whitted_radiance(scene, ray, depth(16, model, 0.0f));
+      const Color seen = subject([&] { return whitted_radiance(scene, ray, depth(16, model, 0.0f)); });
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(seen[c], environment[c], 1e-5f) << "ray " << i;
     }
 }
@@ -117,7 +119,7 @@ TEST(Whitted, GlassSlabPassesWhatFresnelLetsThrough) {
   // reflects R = 0.04 at normal incidence; light bouncing inside the slab forms a geometric
   // series, so the slab passes (1 - R)^2 (1 + R^2 + R^4 + ...) = (1 - R)^2 / (1 - R^2) = 0.923077.
   const WhittedScene scene(glass_slab());
-  const Color seen = whitted_radiance(scene, Ray{Vec3(0.2f, 0.1f, -1), Vec3(0, 0, 1)}, depth(30));
+  const Color seen = subject([&] { return whitted_radiance(scene, Ray{Vec3(0.2f, 0.1f, -1), Vec3(0, 0, 1)}, depth(30)); });
   const float r = 0.04f;
   EXPECT_NEAR(seen.r, (1 - r) * (1 - r) / (1 - r * r), 1e-5f);
 }
@@ -128,9 +130,9 @@ TEST(Whitted, TheDepthLimitCountsRefractedRaysToo) {
   // (1 - R)^2 exactly, without the slab's inner reflections, which need four.
   const WhittedScene scene(glass_slab());
   const Ray ray{Vec3(0.2f, 0.1f, -1), Vec3(0, 0, 1)};
-  EXPECT_EQ(whitted_radiance(scene, ray, depth(1)), Color(0.0f));
-  EXPECT_NEAR(whitted_radiance(scene, ray, depth(2)).r, 0.96f * 0.96f, 1e-5f);
-  EXPECT_NEAR(whitted_radiance(scene, ray, depth(3)).r, 0.96f * 0.96f, 1e-5f);
+  EXPECT_EQ(subject([&] { return whitted_radiance(scene, ray, depth(1)); }), Color(0.0f));
+  EXPECT_NEAR(subject([&] { return whitted_radiance(scene, ray, depth(2)); }).r, 0.96f * 0.96f, 1e-5f);
+  EXPECT_NEAR(subject([&] { return whitted_radiance(scene, ray, depth(3)); }).r, 0.96f * 0.96f, 1e-5f);
 }
 
 // One glass surface, an 18 x 18 square in the plane y = 0, white all round: a ray refracted into it
@@ -147,10 +149,10 @@ TEST(Whitted, BranchPruningWeighsTheRefractedBranchByTheLightItPasses) {
   const WhittedScene scene(glass_surface());
   const float cos_i = 0.05f;
   const Ray ray{Vec3(-15, 0.5f, 0), Vec3(std::sqrt(1.0f - cos_i * cos_i), -cos_i, 0)};  // meets it at x = -5
-  const float r = fresnel_dielectric(cos_i, 1.0f, 1.5f);
+  const float r = subject([&] { return fresnel_dielectric(cos_i, 1.0f, 1.5f); });
   ASSERT_GT(r, 0.5f);
-  EXPECT_NEAR(whitted_radiance(scene, ray, depth(5, FresnelModel::exact, 0.0f)).r, 1.0f, 1e-5f);
-  EXPECT_NEAR(whitted_radiance(scene, ray, depth(5, FresnelModel::exact, 0.5f)).r, r, 1e-5f);
+  EXPECT_NEAR(subject([&] { return whitted_radiance(scene, ray, depth(5, FresnelModel::exact, 0.0f)); }).r, 1.0f, 1e-5f);
+  EXPECT_NEAR(subject([&] { return whitted_radiance(scene, ray, depth(5, FresnelModel::exact, 0.5f)); }).r, r, 1e-5f);
 }
 
 TEST(Whitted, BranchPruningWeighsTheReflectedBranchByTheLightItReflects) {
@@ -158,8 +160,8 @@ TEST(Whitted, BranchPruningWeighsTheReflectedBranchByTheLightItReflects) {
   // the reflected branch, of weight R, is cut off and only 1 - R is left.
   const WhittedScene scene(glass_surface());
   const Ray ray{Vec3(0.5f, 2, 0.25f), Vec3(0, -1, 0)};
-  EXPECT_NEAR(whitted_radiance(scene, ray, depth(5, FresnelModel::exact, 0.0f)).r, 1.0f, 1e-5f);
-  EXPECT_NEAR(whitted_radiance(scene, ray, depth(5, FresnelModel::exact, 0.1f)).r, 0.96f, 1e-5f);
+  EXPECT_NEAR(subject([&] { return whitted_radiance(scene, ray, depth(5, FresnelModel::exact, 0.0f)); }).r, 1.0f, 1e-5f);
+  EXPECT_NEAR(subject([&] { return whitted_radiance(scene, ray, depth(5, FresnelModel::exact, 0.1f)); }).r, 0.96f, 1e-5f);
 }
 
 TEST(Whitted, BranchPruningBoundsTheRayTreeBetweenGlassAndMirrors) {
@@ -177,7 +179,7 @@ TEST(Whitted, BranchPruningBoundsTheRayTreeBetweenGlassAndMirrors) {
                                     {Shape{"mirror", square(0, false), 0}, Shape{"mirror", square(2, true), 0},
                                      Shape{"glass", square(0.9f, true), 1}, Shape{"glass", square(1.1f, false), 1}},
                                     Color(1.0f)));
-  const Color seen = whitted_radiance(scene, Ray{Vec3(0.1f, 0.2f, 0.5f), glm::normalize(Vec3(0.01f, 0.02f, 1))}, depth(200));
+  const Color seen = subject([&] { return whitted_radiance(scene, Ray{Vec3(0.1f, 0.2f, 0.5f), glm::normalize(Vec3(0.01f, 0.02f, 1))}, depth(200)); });
   EXPECT_TRUE(is_finite(seen));
   EXPECT_LT(seen.r, 1e-3f);
 }
@@ -186,9 +188,9 @@ TEST(Whitted, TotalInternalReflectionTrapsLightInsideGlass) {
   // From inside a glass ball, a ray meeting the surface at sin(theta) = 0.9 > 1 / 1.5 reflects
   // completely, and keeps doing so at the same angle: it never gets out.
   const WhittedScene scene(scene_of({glass(1.5f)}, {Shape{"ball", Sphere{Vec3(0), 1.0f}, 0}}, Color(1.0f)));
-  EXPECT_EQ(whitted_radiance(scene, Ray{Vec3(0, 0.9f, 0), Vec3(1, 0, 0)}, depth(40)), Color(0.0f));
+  EXPECT_EQ(subject([&] { return whitted_radiance(scene, Ray{Vec3(0, 0.9f, 0), Vec3(1, 0, 0)}, depth(40)); }), Color(0.0f));
   // At sin(theta) = 0.3 most of it leaves: 1 - F(leaving, 0.3) plus what comes back around.
-  const Color escapes = whitted_radiance(scene, Ray{Vec3(0, 0.3f, 0), Vec3(1, 0, 0)}, depth(40));
+  const Color escapes = subject([&] { return whitted_radiance(scene, Ray{Vec3(0, 0.3f, 0), Vec3(1, 0, 0)}, depth(40)); });
   EXPECT_GT(escapes.r, 0.99f);
 }
 
@@ -200,7 +202,7 @@ TEST(Whitted, DiffuseSurfaceFollowsInverseSquareAndCosineLaws) {
   const WhittedScene scene(scene_of({floor}, {Shape{"floor", Plane{Vec3(0), Vec3(0, 1, 0)}, 0}}, Color(0.0f),
                                     {PointLight{Vec3(0, 2, 0), Color(10.0f)}}));
   const Vec3 target(1.5f, 0, 0), eye(1.5f, 1, -1);
-  const Color seen = whitted_radiance(scene, Ray{eye, glm::normalize(target - eye)}, depth(5));
+  const Color seen = subject([&] { return whitted_radiance(scene, Ray{eye, glm::normalize(target - eye)}, depth(5)); });
   EXPECT_NEAR(seen.r, 0.6f / kPi * 1.28f, 1e-5f);
 }
 
@@ -214,11 +216,11 @@ TEST(Whitted, ShadowsAndOneSidedEmission) {
                                      Shape{"lamp", Quad{{Vec3(3, 1, 0), Vec3(3, 2, 0), Vec3(4, 2, 0), Vec3(4, 1, 0)}}, 1}},
                                     Color(0.0f), {PointLight{Vec3(0, 2, 0), Color(10.0f)}}));
   const Vec3 eye(0.3f, 3, -3);
-  EXPECT_EQ(whitted_radiance(scene, Ray{eye, glm::normalize(Vec3(0, 0, 0) - eye)}, depth(5)), Color(0.0f))
+  EXPECT_EQ(subject([&] { return whitted_radiance(scene, Ray{eye, glm::normalize(Vec3(0, 0, 0) - eye)}, depth(5)); }), Color(0.0f))
       << "the point under the ball is in its shadow";
   // The lamp's outward normal is (v1 - v0) x (v2 - v0) = (0,1,0) x (1,1,0) = -z: it faces the camera.
-  EXPECT_EQ(whitted_radiance(scene, Ray{Vec3(3.5f, 1.5f, -5), Vec3(0, 0, 1)}, depth(5)), Color(3.0f));
-  EXPECT_EQ(whitted_radiance(scene, Ray{Vec3(3.5f, 1.5f, 5), Vec3(0, 0, -1)}, depth(5)), Color(0.0f))
+  EXPECT_EQ(subject([&] { return whitted_radiance(scene, Ray{Vec3(3.5f, 1.5f, -5), Vec3(0, 0, 1)}, depth(5)); }), Color(3.0f));
+  EXPECT_EQ(subject([&] { return whitted_radiance(scene, Ray{Vec3(3.5f, 1.5f, 5), Vec3(0, 0, -1)}, depth(5)); }), Color(0.0f))
       << "emission leaves the front face only";
 }
 
@@ -236,7 +238,7 @@ TEST(Whitted, ALightInTheSurfacesPlaneGivesNothingWhereverTheShadingNormalLeans)
   const auto lit_by = [&](Vec3 light) {
     const WhittedScene scene(scene_of({floor}, {Shape{"floor", Plane{Vec3(0), Vec3(0, 1, 0)}, 0}}, Color(0.0f),
                                       {PointLight{light, Color(10.0f)}}));
-    return shade_direct(scene, hit, Vec3(0, 1, 0), OffsetPolicy{});
+    return subject([&] { return shade_direct(scene, hit, Vec3(0, 1, 0), OffsetPolicy{}); });
   };
   EXPECT_EQ(lit_by(Vec3(2, 0, 0)), Color(0.0f)) << "a light in the plane";
   EXPECT_EQ(lit_by(Vec3(2, -1e-3f, 0)), Color(0.0f)) << "a light below the plane";
@@ -268,8 +270,10 @@ class WhittedScenes : public ::testing::Test {
     const WhittedScene scene(d);
     WhittedOptions options;
     options.max_depth = s.max_depth;
-    return render_image(Camera(d.camera, s.width, s.height), s, threads,
-                        [&](const Ray& ray, Rng&) { return whitted_radiance(scene, ray, options); });
+    return subject([&] {
+      return render_image(Camera(d.camera, s.width, s.height), s, threads,
+                          [&](const Ray& ray, Rng&) { return whitted_radiance(scene, ray, options); });
+    });
   }
 };
 

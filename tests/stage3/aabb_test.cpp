@@ -1,5 +1,6 @@
 #include "03-acceleration/aabb.h"
 #include "common/random.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +10,7 @@ namespace {
 const Aabb kUnitBox{Vec3(0), Vec3(1)};
 
 std::optional<float> slab(const Aabb& box, Vec3 origin, Vec3 direction, Interval range = Interval::positive()) {
-  return intersect_aabb(box, RayInverse(Ray{origin, direction}), range);
+  return testing::subject([&] { return intersect_aabb(box, RayInverse(Ray{origin, direction}), range); });
 }
 
 // The convention: boundaries count (a ray grazing a face or crossing a flat box hits), since a

@@ -17,22 +17,39 @@ class Builders : public ::testing::TestWithParam<Builder> {
 };
 
 TEST_P(Builders, AgreeWithTheSahTreeOnTheBunny) {
-  const BvhAggregate reference(bunny(), BvhBuildOptions{}), tested(bunny(), options());
-  ASSERT_TRUE(tree_culls(reference, *bunny()));
-  ASSERT_TRUE(tree_culls(tested, *bunny()));
-  expect_same_answers(reference, tested, random_rays(*bunny(), 100000, 3));
+  const auto [shares, truth, answers] = subject([&] {
+    const BvhAggregate reference(bunny(), BvhBuildOptions{}), tested(bunny(), options());
+    const std::vector<double> culled{share_opened(reference, *bunny()), share_opened(tested, *bunny())};
+    if (!tree_culls(culled[0], 1) || !tree_culls(culled[1], 1)) return std::tuple(culled, Answers{}, Answers{});
+    const std::vector<Ray> rays = random_rays(*bunny(), 100000, 3);
+    return std::tuple(culled, answers_of(reference, rays), answers_of(tested, rays));
+  });
+  ASSERT_EQ(shares.size(), 2u);
+  ASSERT_TRUE(tree_culls(shares[0], bunny()->size()));
+  ASSERT_TRUE(tree_culls(shares[1], bunny()->size()));
+  ASSERT_EQ(truth.size(), 100000u);
+  expect_same_answers(truth, answers);
 }
 
 TEST_P(Builders, AnyHitAgreesWithClosestHit) {
   const auto set = mix();
-  const BvhAggregate bvh(set, options());
-  ASSERT_TRUE(tree_culls(bvh, *set));
+  const std::vector<Ray> rays = random_rays(*set, 20000, 4);
+  std::vector<Interval> ranges;
   Rng rng(6, 0, 0);
+  for (size_t i = 0; i < rays.size(); ++i) ranges.push_back(Interval{0.0f, 4.0f * rng.uniform()});
+  // Per ray: (occluded, closest hit found).
+  const auto [share, answers] = subject([&] {
+    const BvhAggregate bvh(set, options());
+    std::vector<std::pair<bool, bool>> each;
+    for (size_t i = 0; i < rays.size(); ++i)
+      each.push_back({bvh.occluded(rays[i], ranges[i]), bvh.closest_hit(rays[i], ranges[i]).has_value()});
+    return std::pair(share_opened(bvh, *set), each);
+  });
+  ASSERT_TRUE(tree_culls(share, set->size()));
+  ASSERT_EQ(answers.size(), rays.size());
   int occluded = 0;
-  for (const Ray& ray : random_rays(*set, 20000, 4)) {
-    const Interval range{0.0f, 4.0f * rng.uniform()};
-    const bool blocked = bvh.occluded(ray, range);
-    EXPECT_EQ(blocked, bvh.closest_hit(ray, range).has_value());
+  for (const auto& [blocked, hit] : answers) {
+    EXPECT_EQ(blocked, hit);
     occluded += blocked ? 1 : 0;
   }
   EXPECT_GT(occluded, 1000);
@@ -49,13 +66,23 @@ TEST_P(Builders, RaysWithANanOrAnInfinityMeetNothing) {
                       {Vec3(nan, 0.0f, -5.0f), Vec3(0.0f, 0.0f, 1.0f)}, {Vec3(0.0f, 0.0f, -inf), Vec3(0.0f, 0.0f, 1.0f)},
                       {Vec3(0.0f, 0.0f, -5.0f), Vec3(0.0f, 0.0f, inf)}};
   const auto one_sphere = primitives_of({}, {Sphere{Vec3(0.0f), 1.0f}});
-  ASSERT_TRUE(BvhAggregate(one_sphere, options()).closest_hit(Ray{Vec3(0.0f, 0.0f, -5.0f), Vec3(0.0f, 0.0f, 1.0f)},
-                                                              Interval::positive()));  // the finite ray does
+  ASSERT_TRUE(subject([&] {
+    return BvhAggregate(one_sphere, options())
+        .closest_hit(Ray{Vec3(0.0f, 0.0f, -5.0f), Vec3(0.0f, 0.0f, 1.0f)}, Interval::positive())
+        .has_value();
+  }));  // the finite ray does
   for (const auto& set : {one_sphere, mix()}) {
-    const BvhAggregate bvh(set, options());
-    for (const Ray& ray : rays) {
-      EXPECT_FALSE(bvh.closest_hit(ray, Interval::positive()));
-      EXPECT_FALSE(bvh.occluded(ray, Interval::positive()));
+    // Per ray: (closest hit found, occluded).
+    const auto answers = subject([&] {
+      const BvhAggregate bvh(set, options());
+      std::vector<std::pair<bool, bool>> each;
+      for (const Ray& ray : rays)
+        each.push_back({bvh.closest_hit(ray, Interval::positive()).has_value(), bvh.occluded(ray, Interval::positive())});
+      return each;
+    });
+    for (const auto& [hit, blocked] : answers) {
+      EXPECT_FALSE(hit);
+      EXPECT_FALSE(blocked);
     }
   }
 }
@@ -180,7 +207,7 @@ TEST_P(Builders, TreesAreValidOnRealAndDegenerateInput) {
   inputs.push_back(flat);
   for (const auto& input : inputs) {
     SCOPED_TRACE(std::to_string(input.size()) + " primitives");
-    const Bvh bvh = build_bvh(input, options());
+    const Bvh bvh = subject([&] { return build_bvh(input, options()); });
     expect_valid_tree(bvh, input);
     if (options().wide) expect_valid_wide_tree(collapse_to_wide(bvh), bvh, input);
   }
@@ -197,10 +224,13 @@ TEST_P(Builders, DegenerateTrianglesNeitherHitNorBreakTheTree) {
     dirty.triangles.push_back({clean.triangles[k][0], clean.triangles[k][1], clean.triangles[k][1]});
   }
   const auto clean_set = primitives_of({clean}), dirty_set = primitives_of({dirty});
-  const BvhAggregate with(dirty_set, options());
-  const NaiveAggregate without(clean_set);
-  for (const Ray& ray : random_rays(*clean_set, 5000, 9)) {
-    const auto a = without.closest_hit(ray, Interval::positive()), b = with.closest_hit(ray, Interval::positive());
+  const std::vector<Ray> rays = random_rays(*clean_set, 5000, 9);
+  const auto [truth, answers] = subject([&] {
+    return std::pair(answers_of(NaiveAggregate(clean_set), rays), answers_of(BvhAggregate(dirty_set, options()), rays));
+  });
+  ASSERT_EQ(answers.size(), truth.size());
+  for (size_t i = 0; i < truth.size(); ++i) {
+    const auto &a = truth[i], &b = answers[i];
     ASSERT_EQ(a.has_value(), b.has_value());
     if (a) {
       EXPECT_EQ(a->t, b->t);
@@ -216,7 +246,8 @@ TEST_P(Builders, ThreadsBuildTheSameTreeAsOne) {
   BvhBuildOptions serial = options(), parallel = options();
   serial.build_threads = 1;
   parallel.build_threads = 4;
-  const Bvh one = build_bvh(bounds, serial), four = build_bvh(bounds, parallel);
+  const Bvh one = subject([&] { return build_bvh(bounds, serial); });
+  const Bvh four = subject([&] { return build_bvh(bounds, parallel); });
   ASSERT_EQ(one.nodes.size(), four.nodes.size());
   EXPECT_EQ(one.order, four.order);
   for (size_t i = 0; i < one.nodes.size(); ++i) {
@@ -241,10 +272,11 @@ TEST(SahSplit, SeparatesTwoClustersOfUnequalSize) {
   }
   BvhBuildOptions options;
   options.split = SplitMethod::sah;
-  const Bvh bvh = build_bvh(boxes, options);
+  const Bvh bvh = subject([&] { return build_bvh(boxes, options); });
   ASSERT_FALSE(bvh.nodes.empty());
   const BvhNode& root = bvh.nodes[0];
   ASSERT_FALSE(root.is_leaf);
+  ASSERT_LT(root.offset + 1, bvh.nodes.size());
   const BvhNode &a = bvh.nodes[root.offset], &b = bvh.nodes[root.offset + 1];
   EXPECT_LE(a.bounds.hi.x - a.bounds.lo.x, 1.0f);
   EXPECT_LE(b.bounds.hi.x - b.bounds.lo.x, 1.0f);
@@ -262,20 +294,24 @@ TEST(BvhTraversal, EntersTheNearerChildFirstAndDropsWhatLiesBeyondTheHit) {
     BvhBuildOptions options;
     options.split = split;
     options.max_leaf_size = 1;
-    const Bvh bvh = build_bvh(boxes, options);
     for (const float direction : {1.0f, -1.0f}) {
       const Ray ray{Vec3(direction > 0 ? -10.0f : 600.0f, 0.5f, 0.5f), Vec3(direction, 0, 0)};
-      std::vector<std::uint32_t> tested;
-      const auto hit_box = [&](std::uint32_t slot, Interval range) -> std::optional<float> {
-        tested.push_back(bvh.order[slot]);
-        const Aabb& box = boxes[bvh.order[slot]];
-        const float t = direction > 0 ? box.lo.x - ray.origin.x : ray.origin.x - box.hi.x;
-        return range.surrounds(t) ? std::optional<float>(t) : std::nullopt;
-      };
-      const auto hit = bvh_closest_hit(bvh, ray, Interval::positive(), hit_box);
+      // The primitives tested, in order, and the primitive hit.
+      const auto [tested, hit] = subject([&] {
+        const Bvh bvh = build_bvh(boxes, options);
+        std::vector<std::uint32_t> order;
+        const auto hit_box = [&](std::uint32_t slot, Interval range) -> std::optional<float> {
+          order.push_back(bvh.order.at(slot));
+          const Aabb& box = boxes.at(bvh.order.at(slot));
+          const float t = direction > 0 ? box.lo.x - ray.origin.x : ray.origin.x - box.hi.x;
+          return range.surrounds(t) ? std::optional<float>(t) : std::nullopt;
+        };
+        const auto found = bvh_closest_hit(bvh, ray, Interval::positive(), hit_box);
+        return std::pair(order, found ? std::optional<std::uint32_t>(bvh.order.at(found->second)) : std::nullopt);
+      });
       const std::uint32_t nearest = direction > 0 ? 0 : 255;
       ASSERT_TRUE(hit);
-      EXPECT_EQ(bvh.order[hit->second], nearest);
+      EXPECT_EQ(*hit, nearest);
       EXPECT_EQ(tested, std::vector<std::uint32_t>{nearest}) << "split " << int(split) << ", direction " << direction;
     }
   }
@@ -315,8 +351,13 @@ TEST(WideBvh, FourBoxTestMatchesTheSlabTestBoxByBox) {
     float t[4];
     const unsigned hits = intersect_wide_node(node, inverse, range, t);
     ASSERT_LT(hits, 16u);
+    const auto slabs = subject([&] {
+      std::array<std::optional<float>, 4> each;
+      for (int i = 0; i < 4; ++i) each[size_t(i)] = intersect_aabb(boxes[i], inverse, range);
+      return each;
+    });
     for (int i = 0; i < 4; ++i) {
-      const std::optional<float> expected = intersect_aabb(boxes[i], inverse, range);
+      const std::optional<float> expected = slabs[size_t(i)];
       ASSERT_EQ((hits >> i & 1u) != 0, expected.has_value()) << "trial " << trial << ", box " << i;
       if (expected) {
         EXPECT_EQ(t[i], *expected);
@@ -325,45 +366,52 @@ TEST(WideBvh, FourBoxTestMatchesTheSlabTestBoxByBox) {
   }
 }
 
-// The leaves of the 4-wide tree, as the aggregate stores them: (packed, unpacked) counts.
-std::pair<size_t, size_t> packed_and_unpacked_leaves(const BvhAggregate<Primitives>& bvh) {
+// The leaves of the 4-wide tree, as the aggregate stores them.
+struct Leaves {
   size_t packed = 0, unpacked = 0;
+  size_t packs_named_beyond_the_last = 0;  // must be 0
+};
+Leaves leaves_of(const BvhAggregate<Primitives>& bvh) {
+  Leaves leaves;
   for (const WideBvhNode& node : bvh.wide_bvh()->nodes)
     for (int i = 0; i < WideBvhNode::kWidth; ++i) {
       if (node.count[i] == 0) continue;
       const bool pack = (node.count[i] & BvhAggregate<Primitives>::kPackedLeaf) != 0;
-      packed += pack;
-      unpacked += !pack;
-      if (pack) {
-        EXPECT_LT(node.child[i], bvh.packs());
-      }
+      leaves.packed += pack;
+      leaves.unpacked += !pack;
+      leaves.packs_named_beyond_the_last += pack && node.child[i] >= bvh.packs();
     }
-  return {packed, unpacked};
+  return leaves;
 }
+auto record_fields(Leaves& l) { return std::tie(l.packed, l.unpacked, l.packs_named_beyond_the_last); }
 
 // Every leaf of one to four triangles becomes a pack, and only those: a leaf with a sphere keeps
 // its slots, and so does every leaf when the scene's triangle test is Moeller-Trumbore (whose
 // answers the pack's watertight test would not give) or packs are turned off.
 TEST(BvhLayout, WideLeavesOfUpToFourTrianglesArePacks) {
   BvhBuildOptions options{.wide = true};
-  const BvhAggregate bunny_tree(bunny(), options);
-  const auto [packed, unpacked] = packed_and_unpacked_leaves(bunny_tree);
-  EXPECT_EQ(unpacked, 0u);
-  EXPECT_EQ(packed, bunny_tree.packs());
-  EXPECT_GT(packed, bunny()->size() / 4);
-
-  const auto set = mix();
-  const BvhAggregate mixed(set, options);
-  const auto [mixed_packed, mixed_unpacked] = packed_and_unpacked_leaves(mixed);
-  EXPECT_GT(mixed_packed, 0u);
-  EXPECT_GE(mixed_unpacked, 1u);  // the four spheres sit in leaves of their own or with triangles
-  EXPECT_LE(mixed_unpacked, 4u);
-
   auto moller_trumbore = mix();
   moller_trumbore->store_of<TriangleKind>().method = TriangleMethod::moller_trumbore;
-  EXPECT_EQ(BvhAggregate(moller_trumbore, options).packs(), 0u);
-  options.triangle_packs = false;
-  EXPECT_EQ(BvhAggregate(bunny(), options).packs(), 0u);
+  BvhBuildOptions without_packs = options;
+  without_packs.triangle_packs = false;
+  // The bunny's leaves and packs, the mix's leaves, and the packs with Moeller-Trumbore and with packs off.
+  const auto [bunny_leaves, bunny_packs, mixed, packs_moller_trumbore, packs_off] = subject([&] {
+    const BvhAggregate bunny_tree(bunny(), options);
+    return std::tuple(leaves_of(bunny_tree), bunny_tree.packs(), leaves_of(BvhAggregate(mix(), options)),
+                      BvhAggregate(moller_trumbore, options).packs(), BvhAggregate(bunny(), without_packs).packs());
+  });
+  EXPECT_EQ(bunny_leaves.unpacked, 0u);
+  EXPECT_EQ(bunny_leaves.packed, bunny_packs);
+  EXPECT_EQ(bunny_leaves.packs_named_beyond_the_last, 0u);
+  EXPECT_GT(bunny_leaves.packed, bunny()->size() / 4);
+
+  EXPECT_GT(mixed.packed, 0u);
+  EXPECT_GE(mixed.unpacked, 1u);  // the four spheres sit in leaves of their own or with triangles
+  EXPECT_LE(mixed.unpacked, 4u);
+  EXPECT_EQ(mixed.packs_named_beyond_the_last, 0u);
+
+  EXPECT_EQ(packs_moller_trumbore, 0u);
+  EXPECT_EQ(packs_off, 0u);
 }
 
 // A fan of 100 triangles around one edge, from vertex 0 to vertex `spread` (the vertices between
@@ -389,32 +437,49 @@ std::shared_ptr<Primitives> fan_with_spread(std::uint32_t spread) {
 TEST(BvhLayout, CompactPacksAnswerAsCopiedOnesInLessMemory) {
   const auto two_meshes = primitives_of({make_uv_sphere(12, 44, 0.3f, 8), make_uv_sphere(10, 30, 0.3f, 9)});
   const auto widest = fan_with_spread(0xffff), too_wide = fan_with_spread(0x10000);
-  const BvhBuildOptions compact_options{.wide = true, .compact_packs = true};
-  EXPECT_EQ(packed_and_unpacked_leaves(BvhAggregate(widest, compact_options)).second, 0u);
-  EXPECT_EQ(packed_and_unpacked_leaves(BvhAggregate(too_wide, compact_options)).first, 0u);
+  const BvhBuildOptions copied_options{.wide = true}, compact_options{.wide = true, .compact_packs = true};
+  const auto [widest_leaves, too_wide_leaves] = subject([&] {
+    return std::pair(leaves_of(BvhAggregate(widest, compact_options)), leaves_of(BvhAggregate(too_wide, compact_options)));
+  });
+  EXPECT_EQ(widest_leaves.unpacked, 0u);
+  EXPECT_EQ(too_wide_leaves.packed, 0u);
   for (const auto& set : {two_meshes, widest, too_wide, bunny()}) {
-    const BvhAggregate copied(set, BvhBuildOptions{.wide = true});
-    const BvhAggregate compact(set, BvhBuildOptions{.wide = true, .compact_packs = true});
+    const std::vector<Ray> rays = random_rays(*set, 4000, 11);
+    // The compact tree's packs, and per tree each ray's closest hit and whether it is occluded.
+    const auto [compact_packs, copied_answers, compact_answers, copied_occluded, compact_occluded] = subject([&] {
+      const BvhAggregate copied(set, copied_options), compact(set, compact_options);
+      std::vector<bool> copied_blocked, compact_blocked;
+      for (const Ray& ray : rays) {
+        copied_blocked.push_back(copied.occluded(ray, Interval::positive()));
+        compact_blocked.push_back(compact.occluded(ray, Interval::positive()));
+      }
+      return std::tuple(compact.packs(), answers_of(copied, rays), answers_of(compact, rays), copied_blocked,
+                        compact_blocked);
+    });
     if (set != too_wide) {
-      ASSERT_GT(compact.packs(), set->size() / 5);
+      ASSERT_GT(compact_packs, set->size() / 5);
     }
-    for (const Ray& ray : random_rays(*set, 4000, 11)) {
-      const auto x = copied.closest_hit(ray, Interval::positive()), y = compact.closest_hit(ray, Interval::positive());
+    ASSERT_EQ(copied_answers.size(), rays.size());
+    ASSERT_EQ(compact_answers.size(), rays.size());
+    ASSERT_EQ(copied_occluded, compact_occluded);
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const auto &x = copied_answers[i], &y = compact_answers[i];
       ASSERT_EQ(x.has_value(), y.has_value());
       if (x) {
         ASSERT_TRUE(x->t == y->t && x->kind == y->kind && x->index == y->index && x->b1 == y->b1 && x->b2 == y->b2)
             << "t " << x->t << " vs " << y->t << ", triangle " << x->index << " vs " << y->index;
       }
-      ASSERT_EQ(copied.occluded(ray, Interval::positive()), compact.occluded(ray, Interval::positive()));
     }
   }
-  EXPECT_EQ(packed_and_unpacked_leaves(BvhAggregate(two_meshes, BvhBuildOptions{.wide = true})).second, 0u);
-  EXPECT_GT(packed_and_unpacked_leaves(BvhAggregate(two_meshes, BvhBuildOptions{.wide = true, .compact_packs = true})).second, 0u);
+  const auto [copied_meshes, compact_meshes, copied, compact] = subject([&] {
+    return std::tuple(leaves_of(BvhAggregate(two_meshes, copied_options)), leaves_of(BvhAggregate(two_meshes, compact_options)),
+                      BvhAggregate(bunny(), copied_options).bytes(), BvhAggregate(bunny(), compact_options).bytes());
+  });
+  EXPECT_EQ(copied_meshes.unpacked, 0u);
+  EXPECT_GT(compact_meshes.unpacked, 0u);
 
   const double triangles = double(bunny()->size());
   const double mesh_bytes = double(bunny()->store_of<TriangleKind>().bytes());
-  const size_t copied = BvhAggregate(bunny(), BvhBuildOptions{.wide = true}).bytes();
-  const size_t compact = BvhAggregate(bunny(), BvhBuildOptions{.wide = true, .compact_packs = true}).bytes();
   EXPECT_LT(3 * compact, 2 * copied);
   EXPECT_LE((mesh_bytes + double(compact)) / triangles, 64.0);
 }
@@ -422,16 +487,29 @@ TEST(BvhLayout, CompactPacksAnswerAsCopiedOnesInLessMemory) {
 // The packs are filled in chunks, a chunk per build thread: on any number of threads the 4-wide
 // tree, its packs and so every answer come out the same.
 TEST(BvhLayout, PacksComeOutTheSameOnAnyNumberOfThreads) {
-  const BvhAggregate one(bunny(), BvhBuildOptions{.wide = true, .build_threads = 1});
-  const BvhAggregate three(bunny(), BvhBuildOptions{.wide = true, .build_threads = 3});
-  ASSERT_EQ(one.packs(), three.packs());
-  const auto &a = one.wide_bvh()->nodes, &b = three.wide_bvh()->nodes;
+  const std::vector<Ray> rays = random_rays(*bunny(), 3000, 5);
+  // Per tree: its packs, its nodes' (child, count) in order, and its answers.
+  const auto trees = subject([&] {
+    std::vector<std::tuple<size_t, std::vector<std::pair<std::uint32_t, std::uint32_t>>, Answers>> each;
+    for (const int threads : {1, 3}) {
+      const BvhAggregate tree(bunny(), BvhBuildOptions{.wide = true, .build_threads = threads});
+      std::vector<std::pair<std::uint32_t, std::uint32_t>> children;
+      for (const WideBvhNode& node : tree.wide_bvh()->nodes)
+        for (int c = 0; c < WideBvhNode::kWidth; ++c) children.push_back({node.child[c], node.count[c]});
+      each.push_back({tree.packs(), children, answers_of(tree, rays)});
+    }
+    return each;
+  });
+  ASSERT_EQ(trees.size(), 2u);
+  const auto& [one_packs, a, one] = trees[0];
+  const auto& [three_packs, b, three] = trees[1];
+  ASSERT_EQ(one_packs, three_packs);
   ASSERT_EQ(a.size(), b.size());
-  for (size_t i = 0; i < a.size(); ++i)
-    for (int c = 0; c < WideBvhNode::kWidth; ++c)
-      ASSERT_TRUE(a[i].child[c] == b[i].child[c] && a[i].count[c] == b[i].count[c]) << "node " << i << " child " << c;
-  for (const Ray& ray : random_rays(*bunny(), 3000, 5)) {
-    const auto x = one.closest_hit(ray, Interval::positive()), y = three.closest_hit(ray, Interval::positive());
+  for (size_t i = 0; i < a.size(); ++i) ASSERT_TRUE(a[i] == b[i]) << "node " << i / 4 << " child " << i % 4;
+  ASSERT_EQ(one.size(), rays.size());
+  ASSERT_EQ(three.size(), rays.size());
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const auto &x = one[i], &y = three[i];
     ASSERT_EQ(x.has_value(), y.has_value());
     if (x) {
       EXPECT_TRUE(x->t == y->t && x->index == y->index && x->b1 == y->b1 && x->b2 == y->b2);
@@ -488,7 +566,7 @@ TEST(BvhLayout, SahBeatsTheOtherBuildersOnItsOwnCostModel) {
   auto cost = [&](SplitMethod split) {
     BvhBuildOptions o;
     o.split = split;
-    return build_bvh(bounds, o).stats().sah_cost;
+    return subject([&] { return build_bvh(bounds, o); }).stats().sah_cost;
   };
   EXPECT_LT(cost(SplitMethod::sah), cost(SplitMethod::median));
   EXPECT_LT(cost(SplitMethod::sah), cost(SplitMethod::middle));

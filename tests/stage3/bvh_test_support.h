@@ -7,6 +7,8 @@
 #include "common/obj_loader.h"
 #include "common/random.h"
 
+#include "stage3/records.h"
+#include "support/subject.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
@@ -17,6 +19,7 @@
 namespace rt {
 
 using testing::source_path;
+using testing::subject;
 
 struct Builder {
   const char* name;
@@ -100,14 +103,24 @@ inline std::vector<Ray> random_rays(const Primitives& set, int count, std::uint6
   return rays;
 }
 
+using Answers = std::vector<std::optional<PrimitiveHit>>;
+
+// An aggregate's closest hits for `rays`, in order.
+inline Answers answers_of(const Aggregate& aggregate, const std::vector<Ray>& rays) {
+  Answers answers;
+  answers.reserve(rays.size());
+  for (const Ray& ray : rays) answers.push_back(aggregate.closest_hit(ray, Interval::positive()));
+  return answers;
+}
+
 // Same hit or miss, same t, and the same primitive unless two primitives are hit at exactly the
 // same t (a ray through a shared edge), where either is right.
-inline void expect_same_answers(const std::vector<std::optional<PrimitiveHit>>& truth, const Aggregate& tested,
-                                const std::vector<Ray>& rays) {
+inline void expect_same_answers(const Answers& truth, const Answers& tested) {
+  ASSERT_EQ(truth.size(), tested.size());
   int mismatches = 0, hits = 0;
-  for (size_t i = 0; i < rays.size() && mismatches < 5; ++i) {
+  for (size_t i = 0; i < truth.size() && mismatches < 5; ++i) {
     const auto& a = truth[i];
-    const auto b = tested.closest_hit(rays[i], Interval::positive());
+    const auto& b = tested[i];
     hits += a ? 1 : 0;
     const bool same_primitive = a && b && a->kind == b->kind && a->index == b->index;
     const bool same = a.has_value() == b.has_value() &&
@@ -118,21 +131,15 @@ inline void expect_same_answers(const std::vector<std::optional<PrimitiveHit>>& 
                     << (b ? std::to_string(b->t) : "miss");
     }
   }
-  EXPECT_GT(hits, int(rays.size()) / 3) << "the rays must mostly hit something";
-}
-
-inline void expect_same_answers(const Aggregate& reference, const Aggregate& tested, const std::vector<Ray>& rays) {
-  std::vector<std::optional<PrimitiveHit>> truth;
-  for (const Ray& ray : rays) truth.push_back(reference.closest_hit(ray, Interval::positive()));
-  expect_same_answers(truth, tested, rays);
+  EXPECT_GT(hits, int(truth.size()) / 3) << "the rays must mostly hit something";
 }
 
 // Whether a tree culls: a traversal told that nothing is ever hit (so its range never shrinks) must
 // still open only leaves holding a small share of the primitives, averaged over rays aimed at the
 // scene. An unfinished split (a tree not sorted by position) or an unfinished traversal (every
 // primitive tested) fails here at once, naming the tasks, instead of after minutes of brute force.
-inline ::testing::AssertionResult tree_culls(const BvhAggregate<Primitives>& bvh, const Primitives& set,
-                                            double max_share = 0.3) {
+// share_opened runs the traversal (inside subject()); tree_culls judges its share.
+inline double share_opened(const BvhAggregate<Primitives>& bvh, const Primitives& set) {
   const size_t primitives = bvh.size();
   size_t tested = 0;
   auto count = [&](std::uint32_t, Interval) {
@@ -148,7 +155,10 @@ inline ::testing::AssertionResult tree_culls(const BvhAggregate<Primitives>& bvh
     if (bvh.wide_bvh()) wide_bvh_closest_hit(*bvh.wide_bvh(), ray, Interval::positive(), count_leaf);
     else bvh_closest_hit(bvh.bvh(), ray, Interval::positive(), count);
   }
-  const double share = double(tested) / double(rays.size() * primitives);
+  return double(tested) / double(rays.size() * primitives);
+}
+
+inline ::testing::AssertionResult tree_culls(double share, size_t primitives, double max_share = 0.3) {
   if (share <= max_share) return ::testing::AssertionSuccess() << share;
   return ::testing::AssertionFailure() << "a ray opens leaves holding " << 100.0 * share << "% of the " << primitives
                                        << " primitives: the tree does not cull (tasks stage3.bvh.*_split, "
@@ -156,19 +166,27 @@ inline ::testing::AssertionResult tree_culls(const BvhAggregate<Primitives>& bvh
 }
 
 // Every builder's tree culls; then brute force once, and every builder against it: same hit or
-// miss, same t, same primitive.
+// miss, same t, same primitive. The brute force is skipped when a tree does not cull.
 inline void expect_builders_agree_with_naive(const std::shared_ptr<Primitives>& set, const std::vector<Ray>& rays) {
-  std::vector<std::unique_ptr<BvhAggregate<Primitives>>> trees;
-  for (const Builder& b : kBuilders) {
-    trees.push_back(std::make_unique<BvhAggregate<Primitives>>(set, b.options()));
-    ASSERT_TRUE(tree_culls(*trees.back(), *set)) << b.name;
-  }
-  const NaiveAggregate naive(set);
-  std::vector<std::optional<PrimitiveHit>> truth;
-  for (const Ray& ray : rays) truth.push_back(naive.closest_hit(ray, Interval::positive()));
-  for (size_t i = 0; i < trees.size(); ++i) {
+  const auto [shares, truth, tested] = subject([&] {
+    std::vector<double> culled;
+    std::vector<std::unique_ptr<BvhAggregate<Primitives>>> trees;
+    for (const Builder& b : kBuilders) {
+      trees.push_back(std::make_unique<BvhAggregate<Primitives>>(set, b.options()));
+      culled.push_back(share_opened(*trees.back(), *set));
+    }
+    std::vector<Answers> each;
+    if (std::any_of(culled.begin(), culled.end(), [](double share) { return !tree_culls(share, 1); }))
+      return std::tuple(culled, Answers{}, each);
+    for (const auto& tree : trees) each.push_back(answers_of(*tree, rays));
+    return std::tuple(culled, answers_of(NaiveAggregate(set), rays), each);
+  });
+  ASSERT_EQ(shares.size(), std::size(kBuilders));
+  for (size_t i = 0; i < shares.size(); ++i) ASSERT_TRUE(tree_culls(shares[i], set->size())) << kBuilders[i].name;
+  ASSERT_EQ(tested.size(), shares.size());
+  for (size_t i = 0; i < tested.size(); ++i) {
     SCOPED_TRACE(kBuilders[i].name);
-    expect_same_answers(truth, *trees[i], rays);
+    expect_same_answers(truth, tested[i]);
   }
 }
 

@@ -4,10 +4,13 @@
 #include "04-radiometry/warp.h"
 #include "support/chi_square.h"
 
+#include "support/subject.h"
 #include <gtest/gtest.h>
 
 namespace rt {
 namespace {
+
+using testing::subject;
 
 using testing::chi_square_test;
 using testing::integrate_2d;
@@ -76,9 +79,13 @@ TEST(WarpChiSquare, UniformTriangle) {
   // whole, halves the diagonal ones exactly, and misses the rest. Density 2 (1 / area).
   constexpr int kGrid = 30;
   std::vector<double> observed(kGrid * kGrid, 0.0), expected(kGrid * kGrid, 0.0);
-  Rng rng(8, 0, 0);
-  for (int k = 0; k < kSamples; ++k) {
-    const Vec3 b = sample_uniform_triangle(rng.uniform2());
+  const std::vector<Vec3> samples = subject([] {
+    std::vector<Vec3> drawn(kSamples);
+    Rng rng(8, 0, 0);
+    for (Vec3& b : drawn) b = sample_uniform_triangle(rng.uniform2());
+    return drawn;
+  });
+  for (const Vec3 b : samples) {
     ASSERT_NEAR(b.x + b.y + b.z, 1.0f, 1e-6f);
     ASSERT_GE(b.x, 0.0f);
     const int i = std::min(kGrid - 1, int(b.y * kGrid)), j = std::min(kGrid - 1, int(b.z * kGrid));
@@ -119,20 +126,20 @@ double integrate_over_sphere(const std::function<double(Vec3)>& pdf, double thet
 }
 
 TEST(WarpPdf, IntegratesToOne) {
-  EXPECT_NEAR(integrate_over_sphere([](Vec3 w) { return uniform_hemisphere_pdf(w); }, kHalfPi), 1.0, 1e-5);
-  EXPECT_NEAR(integrate_over_sphere([](Vec3 w) { return cosine_hemisphere_pdf(w); }, kHalfPi), 1.0, 1e-5);
-  EXPECT_NEAR(integrate_over_sphere([](Vec3) { return uniform_sphere_pdf(); }), 1.0, 1e-5);
+  EXPECT_NEAR(subject([&] { return integrate_over_sphere([](Vec3 w) { return uniform_hemisphere_pdf(w); }, kHalfPi); }), 1.0, 1e-5);
+  EXPECT_NEAR(subject([&] { return integrate_over_sphere([](Vec3 w) { return cosine_hemisphere_pdf(w); }, kHalfPi); }), 1.0, 1e-5);
+  EXPECT_NEAR(subject([&] { return integrate_over_sphere([](Vec3) { return uniform_sphere_pdf(); }); }), 1.0, 1e-5);
   const float cos_max = std::cos(0.6f);
-  EXPECT_NEAR(integrate_over_sphere([&](Vec3) { return uniform_cone_pdf(cos_max); }, 0.6), 1.0, 1e-5);
+  EXPECT_NEAR(subject([&] { return integrate_over_sphere([&](Vec3) { return uniform_cone_pdf(cos_max); }, 0.6); }), 1.0, 1e-5);
   for (const float alpha : {0.05f, 0.3f, 1.0f}) {
-    EXPECT_NEAR(integrate_over_sphere([&](Vec3 m) { return GgxDistribution{alpha}.normal_pdf(m); }, kHalfPi, 2000), 1.0, 1e-3)
+    EXPECT_NEAR(subject([&] { return integrate_over_sphere([&](Vec3 m) { return GgxDistribution{alpha}.normal_pdf(m); }, kHalfPi, 2000); }), 1.0, 1e-3)
         << alpha;
     const Vec3 wo = glm::normalize(Vec3(0.5f, 0.2f, 0.6f));
-    EXPECT_NEAR(integrate_over_sphere([&](Vec3 m) { return GgxDistribution{alpha}.visible_normal_pdf(wo, m); }, kHalfPi, 2000),
+    EXPECT_NEAR(subject([&] { return integrate_over_sphere([&](Vec3 m) { return GgxDistribution{alpha}.visible_normal_pdf(wo, m); }, kHalfPi, 2000); }),
                 1.0, 1e-3)
         << alpha;
   }
-  EXPECT_NEAR(integrate_2d([](double x, double y) { return uniform_disk_pdf(Vec2(float(x), float(y))); }, -1, 1, -1, 1, 2000),
+  EXPECT_NEAR(subject([&] { return integrate_2d([](double x, double y) { return uniform_disk_pdf(Vec2(float(x), float(y))); }, -1, 1, -1, 1, 2000); }),
               1.0, 1e-2);
 }
 
@@ -142,15 +149,17 @@ TEST(WarpEdges, ExtremeNumbersStayOnTheDomain) {
   for (const float a : {0.0f, 0.5f, one_minus})
     for (const float b : {0.0f, 0.5f, one_minus}) {
       const Vec2 u(a, b);
-      for (const Vec3 w : {sample_uniform_hemisphere(u), sample_cosine_hemisphere(u), sample_uniform_sphere(u),
-                           sample_uniform_cone(u, 0.3f), GgxDistribution{0.2f}.sample_normal(u),
-                           GgxDistribution{0.2f}.sample_visible_normal(glm::normalize(Vec3(1, 0, 1e-4f)), u)}) {
+      const auto [directions, d, t] = subject([&] {
+        return std::tuple(std::vector<Vec3>{sample_uniform_hemisphere(u), sample_cosine_hemisphere(u), sample_uniform_sphere(u),
+                                            sample_uniform_cone(u, 0.3f), GgxDistribution{0.2f}.sample_normal(u),
+                                            GgxDistribution{0.2f}.sample_visible_normal(glm::normalize(Vec3(1, 0, 1e-4f)), u)},
+                          sample_uniform_disk(u), sample_uniform_triangle(u));
+      });
+      for (const Vec3 w : directions) {
         EXPECT_TRUE(is_finite(w)) << a << " " << b;
         EXPECT_NEAR(glm::length(w), 1.0f, 1e-5f) << a << " " << b;
       }
-      const Vec2 d = sample_uniform_disk(u);
       EXPECT_LE(glm::length(d), 1.0f + 1e-6f);
-      const Vec3 t = sample_uniform_triangle(u);
       EXPECT_GE(std::min({t.x, t.y, t.z}), 0.0f);
     }
 }
@@ -167,11 +176,15 @@ TEST(WarpInverses, InvertingASampleGivesBackItsNumbers) {
         EXPECT_NEAR(back.y, u.y, 2e-5f) << warp << " at " << u.x << ", " << u.y;
         ++checked;
       };
-      expect_back(invert_uniform_hemisphere(sample_uniform_hemisphere(u)), "uniform hemisphere");
-      expect_back(invert_uniform_sphere(sample_uniform_sphere(u)), "uniform sphere");
-      expect_back(invert_cosine_hemisphere(sample_cosine_hemisphere(u)), "cosine hemisphere");
-      expect_back(invert_uniform_cone(sample_uniform_cone(u, 0.6f), 0.6f), "cone");
-      expect_back(invert_uniform_triangle(sample_uniform_triangle(u)), "triangle");
+      const auto [hemisphere, sphere, cosine, cone, triangle] = subject([&] {
+        return std::tuple(sample_uniform_hemisphere(u), sample_uniform_sphere(u), sample_cosine_hemisphere(u),
+                          sample_uniform_cone(u, 0.6f), sample_uniform_triangle(u));
+      });
+      expect_back(invert_uniform_hemisphere(hemisphere), "uniform hemisphere");
+      expect_back(invert_uniform_sphere(sphere), "uniform sphere");
+      expect_back(invert_cosine_hemisphere(cosine), "cosine hemisphere");
+      expect_back(invert_uniform_cone(cone, 0.6f), "cone");
+      expect_back(invert_uniform_triangle(triangle), "triangle");
     }
   EXPECT_EQ(checked, 5 * 39 * 39);
 }

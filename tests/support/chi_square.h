@@ -8,6 +8,7 @@
 
 #include "common/math.h"
 #include "common/random.h"
+#include "support/subject.h"
 
 #include <algorithm>
 #include <cmath>
@@ -191,13 +192,16 @@ inline std::vector<double> histogram(const SphereGrid& grid, int samples, std::u
   return counts;
 }
 
-// The whole test for a direction sampler against its claimed density.
+// The whole test for a direction sampler against its claimed density. The sampler and the density
+// are the submission's: the histogram and the expected counts are made inside subject(), the
+// verdict outside.
 inline ChiSquareResult sphere_chi_square(const SphereGrid& grid, int samples, std::uint64_t seed,
                                          const std::function<std::optional<Vec3>(Rng&)>& sampler,
                                          const std::function<double(Vec3)>& pdf) {
-  std::vector<double> expected = grid.expected(pdf, samples);
+  auto [observed, expected] =
+      subject([&] { return std::pair(histogram(grid, samples, seed, sampler), grid.expected(pdf, samples)); });
   expected.push_back(0.0);  // the "outside" bin
-  return chi_square_test(histogram(grid, samples, seed, sampler), expected);
+  return chi_square_test(observed, expected);
 }
 
 }  // namespace rt::testing

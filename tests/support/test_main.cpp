@@ -4,6 +4,8 @@
 // failed 200,001 times, a 150 MB XML report), burying the first one, which says what is wrong,
 // and growing GoogleTest's XML report past what the grader reads. RT_TEST_ALL_FAILURES=1 prints
 // every failure and never stops a test.
+#include "support/subject.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -81,5 +83,10 @@ int main(int argc, char** argv) {
     if (testing::TestEventListener* printer = listeners.Release(listeners.default_result_printer()))
       listeners.Append(new FirstFailuresPrinter(printer));
   }
-  return RUN_ALL_TESTS();
+  const int failed = RUN_ALL_TESTS();
+  if (!rt::testing::judge_used_every_record()) {
+    std::fprintf(stderr, "grading: the submission's run gave more values than the test asked for\n");
+    return 86;
+  }
+  return failed;
 }

@@ -23,6 +23,14 @@ Tests run one by one, each in a sandbox of its own that sees the assets, its tes
 stage programs only. A test passes only when its process ends with 0 AND GoogleTest's XML report,
 which it writes after the last test of a normal run, says that the test ran and passed: a test
 that ends its process early (exit, _exit, a crash, a kill) has no report and fails.
+
+A judged test program (grading/manifest.json, "judged_programs") runs each test twice
+(tests/support/subject.h): the subject, the program built with the submission, records the values
+its code gives the test; the judge, the same program built from the starter (copied into the
+prepared folder's judges/ before any submission's file is compiled), reads them back without
+running any of the submission's code, decides, and writes the report that alone counts. The judge
+runs in a sandbox of its own, as another user, seeing the assets, its program and the record only:
+what the subject writes, its own report included, never counts.
 """
 import concurrent.futures
 import dataclasses
@@ -30,6 +38,7 @@ import json
 import os
 import pathlib
 import re
+import shutil
 import subprocess
 import xml.etree.ElementTree as ElementTree
 
@@ -39,6 +48,9 @@ INSTRUCTOR_PARTS = ("CMakeLists.txt", "CMakePresets.json", "cmake/", "common/", 
                     "tools/merge/")
 NEVER_COPIED = ("tests/grading/",)  # the grader's proofs hold solution lines
 MAX_REPORT_BYTES = 4 << 20
+MAX_RECORD_BYTES = 1 << 30  # tests/support/subject.cpp refuses more
+JUDGES = "judges"  # in a prepared folder: the starter's test programs, which judge (see above)
+REPLAY_FAILED = 86  # a judge's exit code when the subject's record is not what the test asked for
 
 
 def instructor_files(root, hidden):
@@ -83,6 +95,18 @@ def hidden_sources(source):
 PREPARED_MARK = "prepared.json"
 
 
+def keep_judges(build, folder):
+    """Copies the starter build's test programs into folder/judges, read-only, before any
+    submission's file is built there."""
+    judges = pathlib.Path(folder) / JUDGES
+    files.remove_tree(judges)
+    judges.mkdir()
+    for program in sorted((pathlib.Path(build) / "bin").glob("*_tests")):
+        shutil.copy2(program, judges / program.name)
+        (judges / program.name).chmod(0o555)
+    judges.chmod(0o555)
+
+
 def copy_prepared(prepared, work):
     """Copies a prepared build's src and build into `work`, modification times and owners kept,
     unless `work` already holds a build (an earlier grading's, which ninja brings up to date)."""
@@ -98,8 +122,9 @@ class Builder:
     """The build of one tree in `work` (src, build, scratch) through a sandbox. The steps see src
     and build under `seen_at` (default: `work` itself): a prepared build's folder, for a copy."""
 
-    def __init__(self, sandbox, work, jobs, deadline, seen_at=None):
+    def __init__(self, sandbox, work, jobs, deadline, seen_at=None, judges=None, judged=()):
         self.sandbox, self.jobs, self.deadline = sandbox, jobs, deadline
+        self.judges, self.judged = judges, set(judged)  # a folder of judges; the programs they judge
         self.work = pathlib.Path(work)
         self.source, self.build = self.work / "src", self.work / "build"
         seen_at = pathlib.Path(seen_at or work)
@@ -133,10 +158,11 @@ class Builder:
                                   cwd=self.seen_path(self.build))
         return result.code == 0
 
-    def own(self, path):
-        """Hands a folder a step writes to the sandbox's user."""
-        if self.sandbox.owner_of_scratch() is not None:
-            os.chown(path, self.sandbox.owner_of_scratch(), self.sandbox.owner_of_scratch())
+    def own(self, path, judge=False):
+        """Hands a folder a step writes to the sandbox's user (or the judges')."""
+        owner = self.sandbox.owner_of_scratch(judge)
+        if owner is not None:
+            os.chown(path, owner, owner)
 
     def configure(self, log):
         """Release, warnings not errors (a warning costs a student nothing here; CI checks the
@@ -202,6 +228,8 @@ def run_one_test(builder, test, slot, log, timeout):
     step = builder.deadline.timeout(timeout)
     if step <= 0:
         return TestResult(name, False, 0.0, f"not run: the time cap of {builder.deadline.cap:g} s was reached")
+    if test["program"] in builder.judged:
+        return run_judged_test(builder, test, slot, log, step)
     files.remove_tree(slot)
     slot.mkdir()
     builder.own(slot)
@@ -213,6 +241,69 @@ def run_one_test(builder, test, slot, log, timeout):
     verdict = judge(name, result, slot)
     files.remove_tree(slot)
     return TestResult(name, verdict is None, result.seconds, test_output(files.head_and_tail_of(log, 20000), verdict))
+
+
+def fresh_folder(builder, path, judge=False):
+    files.remove_tree(path)
+    path.mkdir()
+    builder.own(path, judge)
+    return path
+
+
+def run_judged_test(builder, test, slot, log, step):
+    """The subject run, then the judge's (see the top of this file); the judge's report decides.
+    Both runs work in the same folder (their working directory and TMPDIR), made anew for each and
+    owned by its user, so that the paths a test builds (a scratch folder named in an error message)
+    come out the same in both."""
+    name, program = test["name"], builder.build / "bin" / test["program"]
+    fresh_folder(builder, slot)
+    here = fresh_folder(builder, slot.with_name(slot.name + "-here"))
+    read_only = [builder.bound(p) for p in dict.fromkeys([builder.source / "assets", program, *builder.programs()])]
+    subject = builder.sandbox.run([str(builder.seen_path(program)), f"--gtest_filter={name}"], log, step,
+                                  read_only=read_only, writable=[slot, here], cwd=here,
+                                  environment={"RT_GRADING_RECORD": str(slot / "record.bin"), "TMPDIR": str(here)})
+    files.remove_tree(here)
+    said = files.head_and_tail_of(log, 20000)
+    if subject.timed_out:
+        files.remove_tree(slot)
+        return TestResult(name, False, subject.seconds, test_output(said, "Timeout: the test ran longer than its "
+                                                                          "limit and was killed"))
+    try:
+        record = files.read_beneath(slot, "record.bin", MAX_RECORD_BYTES)
+    except FileNotFoundError:
+        record = b""
+    except (files.Refused, OSError) as e:
+        record = None
+        refused = f"the test's record of its values was refused ({e})"
+    files.remove_tree(slot)
+    if record is None:
+        return TestResult(name, False, subject.seconds, test_output(said, refused))
+    # The judge's own folder, which the subject never saw, with the record read-only in it.
+    bench = fresh_folder(builder, slot.with_name(slot.name + "-judge"), judge=True)
+    (bench / "record.bin").write_bytes(record)
+    (bench / "record.bin").chmod(0o444)
+    judge_program = builder.judges / test["program"] if builder.judges else None
+    if judge_program is None or not judge_program.is_file():
+        files.remove_tree(bench)
+        return TestResult(name, False, subject.seconds, test_output(said, "the test's judge was not built (the "
+                                                                         "starter's build failed or was cut short)"))
+    judge_log = log.with_suffix(".judge.log")
+    judge_log.write_text("")
+    remaining = builder.deadline.timeout(step)
+    result = builder.sandbox.run([str(judge_program), f"--gtest_filter={name}",
+                                  f"--gtest_output=xml:{bench / 'report.xml'}"], judge_log, max(remaining, 1),
+                                 read_only=[builder.bound(builder.source / "assets"), judge_program],
+                                 writable=[bench, fresh_folder(builder, here, judge=True)], cwd=here,
+                                 environment={"RT_GRADING_REPLAY": str(bench / "record.bin"), "TMPDIR": str(here)},
+                                 judge=True)
+    judged = files.head_and_tail_of(judge_log, 20000)
+    verdict = judge(name, result, bench)
+    if result.code == REPLAY_FAILED:
+        verdict = "\n".join(line[len("grading: "):] for line in judged.splitlines() if line.startswith("grading: ")) \
+            or verdict
+    files.remove_tree(bench)
+    files.remove_tree(here)
+    return TestResult(name, verdict is None, subject.seconds + result.seconds, test_output(said, verdict))
 
 
 # GoogleTest's frame around one test's run, which says nothing a report needs.

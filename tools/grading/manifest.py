@@ -11,6 +11,10 @@ Per stage:
             they are reported, worth nothing.
   renders:  render checks (tools/grading/renders.py), each with its points.
 A test that an ungraded glob fits is ungraded; any other test counts in the first group whose glob fits it.
+
+judged_programs: the test programs whose tests are decided by a judge that runs none of the
+submission's code (build.py, tests/support/subject.h); a program's tests must all take what they
+check through subject() before it is listed.
 """
 import dataclasses
 import fnmatch

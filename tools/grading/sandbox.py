@@ -23,6 +23,10 @@ import subprocess
 import time
 
 SANDBOX_USER = 65534  # nobody, on Debian
+# The user a test's judge runs as when the grader is root (build.py): not the one the submission's
+# code runs as, so that nothing a submission leaves behind (in a container without PID namespaces)
+# can write the judge's report or signal it.
+JUDGE_USER = 65533
 SYSTEM_LINKS_OR_FOLDERS = ("/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32")
 # What the compiler, cmake, ninja and the dynamic loader read in /etc.
 ETC_FILES = ("/etc/alternatives", "/etc/ld.so.cache", "/etc/ld.so.conf", "/etc/ld.so.conf.d", "/etc/passwd", "/etc/group")
@@ -70,11 +74,12 @@ class Sandbox:
         self.container_is_sandbox = container_is_sandbox
         # Root runs the steps as `nobody`; anyone else as themselves (they cannot switch user).
         self.uid = (SANDBOX_USER if user is None else user) if os.geteuid() == 0 else None
+        self.judge_uid = (JUDGE_USER if self.uid != JUDGE_USER else JUDGE_USER - 1) if self.uid is not None else None
         self.bwrap = shutil.which("bwrap")
 
-    def owner_of_scratch(self):
+    def owner_of_scratch(self, judge=False):
         """The uid that must own a folder a step writes (None: the grader's own)."""
-        return self.uid
+        return self.judge_uid if judge else self.uid
 
     def check(self, probe_folder):
         """Raises SandboxError unless a step can run here and read `probe_folder` (the work folder)."""
@@ -133,13 +138,14 @@ class Sandbox:
         return ["prlimit", f"--as={self.limits.memory_bytes}", f"--fsize={self.limits.file_bytes}",
                 f"--nproc={processes}", f"--nofile={self.limits.open_files}", f"--cpu={cpu}", "--core=0", "--"]
 
-    def run(self, command, log, timeout, read_only=(), writable=(), masked=(), cwd=None, environment=None):
+    def run(self, command, log, timeout, read_only=(), writable=(), masked=(), cwd=None, environment=None,
+            judge=False):
         """Runs `command` in the sandbox with its output appended to `log` (a file of the grader's,
         which the step writes only through its standard output, so the file size limit bounds it).
         `read_only` and `writable` hold paths, or (path, path the step sees) pairs: a prepared build
         (build.py) is always seen where it was built, wherever its copy lies.
         Returns a Result; a step that outlives `timeout` seconds is killed with everything it
-        started."""
+        started. `judge` runs it as the judges' user (build.py), not the submission's."""
         cwd = cwd or (host_and_seen(writable[0])[1] if writable else "/")
         home = host_and_seen(writable[0])[1] if writable else "/tmp"
         environment = {"PATH": "/usr/bin:/bin", "HOME": home, "TMPDIR": home, "LANG": "C.UTF-8",
@@ -159,7 +165,8 @@ class Sandbox:
         with open(log, "ab") as out:
             out.write(f"$ {' '.join(map(str, command))}\n".encode())
             out.flush()
-            user = {} if self.uid is None else {"user": self.uid, "group": self.uid, "extra_groups": []}
+            uid = self.owner_of_scratch(judge)
+            user = {} if uid is None else {"user": uid, "group": uid, "extra_groups": []}
             process = subprocess.Popen(full, stdin=subprocess.DEVNULL, stdout=out, stderr=subprocess.STDOUT,
                                        cwd=str(cwd) if self.container_is_sandbox else "/", env=env,
                                        start_new_session=True, **user)
