@@ -6,7 +6,9 @@
 #include "04-radiometry/radiometry.h"
 #include "04-radiometry/warp.h"
 #include "common/random.h"
+#include "stage4/records.h"
 #include "support/sample_mean.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -22,7 +24,7 @@ TEST(HiddenWarp, CosineHemisphereHasMeanCosineTwoThirds) {
   Rng rng(2718, 0, 0);
   Mean cos1, cos2;
   for (int i = 0; i < 200000; ++i) {
-    const Vec3 w = sample_cosine_hemisphere(rng.uniform2());
+    const Vec3 w = RT_GRADED(sample_cosine_hemisphere)(rng.uniform2());
     ASSERT_NEAR(glm::length(w), 1.0f, 1e-4f);
     cos1.add(w.z);
     cos2.add(double(w.z) * w.z);
@@ -36,7 +38,7 @@ TEST(HiddenWarp, TriangleBarycentricsHaveTheRightMoments) {
   Rng rng(1618, 0, 0);
   Mean b1, b1_squared;
   for (int i = 0; i < 200000; ++i) {
-    const Vec3 b = sample_uniform_triangle(rng.uniform2());
+    const Vec3 b = RT_GRADED(sample_uniform_triangle)(rng.uniform2());
     ASSERT_NEAR(b.x + b.y + b.z, 1.0f, 1e-5f);
     b1.add(b.y);
     b1_squared.add(double(b.y) * b.y);
@@ -50,10 +52,11 @@ TEST(HiddenLambert, RandomAlbedosGiveRhoOverPiAndWeightRho) {
   for (int i = 0; i < 200; ++i) {
     const Color rho(rng.uniform(), rng.uniform(), rng.uniform());
     const LambertBrdf brdf{rho};
-    const Vec3 wo = sample_cosine_hemisphere(rng.uniform2()), wi = sample_cosine_hemisphere(rng.uniform2());
-    const Color f = brdf.eval(wo, wi);
+    const Vec3 wo = RT_GRADED(sample_cosine_hemisphere)(rng.uniform2()),
+               wi = RT_GRADED(sample_cosine_hemisphere)(rng.uniform2());
+    const Color f = RT_GRADED(brdf.eval)(wo, wi);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[c], rho[c] / kPi, 1e-6f);
-    const std::optional<BsdfSample> s = brdf.sample(wo, rng.uniform2(), rng.uniform());
+    const std::optional<BsdfSample> s = RT_GRADED(brdf.sample)(wo, rng.uniform2(), rng.uniform());
     ASSERT_TRUE(s);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(s->weight[c], rho[c], 1e-5f);
     EXPECT_NEAR(s->pdf, s->wi.z / kPi, 1e-5f);
@@ -64,7 +67,7 @@ TEST(HiddenRadiometry, AreaToSolidAngleAtRandomValues) {
   Rng rng(4040, 0, 0);
   for (int i = 0; i < 200; ++i) {
     const float p = 0.1f + rng.uniform(), r = 0.5f + 5.0f * rng.uniform(), c = 0.05f + 0.95f * rng.uniform();
-    EXPECT_NEAR(area_to_solid_angle_pdf(p, r, c), p * r * r / c, 1e-4f * p * r * r / c);
+    EXPECT_NEAR(RT_GRADED(area_to_solid_angle_pdf)(p, r, c), p * r * r / c, 1e-4f * p * r * r / c);
   }
 }
 
@@ -94,7 +97,7 @@ TEST(HiddenEmitter, TriangleLightMatchesAMidpointQuadrature) {
   Rng rng(777, 0, 0);
   Mean estimate;
   for (int i = 0; i < 200000; ++i) {
-    const EmitterSample s = light.sample(x, rng.uniform2());
+    const EmitterSample s = RT_GRADED(light.sample)(x, rng.uniform2());
     estimate.add(s.pdf > 0 ? std::max(0.0f, glm::dot(n, s.wi)) / s.pdf : 0.0);
   }
   EXPECT_NEAR(estimate.mean(), exact, 4 * estimate.standard_error() + 1e-4 * exact);

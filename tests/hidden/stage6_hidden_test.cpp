@@ -5,7 +5,9 @@
 #include "06-light-transport/camera_importance.h"
 #include "common/random.h"
 #include "stage5/path_estimates.h"
+#include "stage6/records.h"
 #include "stage6/transport_estimates.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -40,7 +42,11 @@ TEST(HiddenStage6Formulas, ProgressiveUpdateAtRandomInputs) {
     PhotonStatistics s{n, r, Color(rng.uniform())};
     const Color flux(rng.uniform());
     const Color tau = s.tau;
-    progressive_update(s, m, flux, alpha);
+    s = testing::subject([&] {
+      PhotonStatistics updated = s;
+      progressive_update(updated, m, flux, alpha);
+      return updated;
+    });
     const double kept = n + alpha * m, shrink = kept / (n + m);
     EXPECT_NEAR(s.photons, kept, 1e-4);
     EXPECT_NEAR(s.radius, r * std::sqrt(shrink), 1e-5);
@@ -64,7 +70,7 @@ TEST(HiddenStage6Formulas, StrategyWeightsOfRandomDensitiesSumToOne) {
       std::vector<VertexDensity> camera, light;
       for (int i = 0; i < t; ++i) camera.push_back({from_camera[size_t(i)], from_light[size_t(i)], false});
       for (int j = 0; j < s; ++j) light.push_back({from_light[size_t(n - 1 - j)], from_camera[size_t(n - 1 - j)], false});
-      sum += strategy_weight(camera, light);
+      sum += RT_GRADED(strategy_weight)(camera, light);
     }
     EXPECT_NEAR(sum, 1.0, 1e-5) << "trial " << trial;
   }
@@ -80,7 +86,8 @@ TEST(HiddenProjection, AnotherCamera) {
   Rng rng(6363, 0, 0);
   for (int k = 0; k < 200; ++k) {
     const Vec2 film(rng.uniform() * 90.0f, rng.uniform() * 160.0f);
-    const std::optional<Vec2> back = project_to_film(camera, generate_camera_ray(camera, film).at(3.0f));
+    const std::optional<Vec2> back =
+        RT_GRADED(project_to_film)(camera, RT_GRADED(generate_camera_ray)(camera, film).at(3.0f));
     ASSERT_TRUE(back);
     EXPECT_NEAR(back->x, film.x, 2e-3f);
     EXPECT_NEAR(back->y, film.y, 2e-3f);

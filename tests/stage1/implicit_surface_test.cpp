@@ -1,6 +1,5 @@
 #include "01-ray-casting/implicit_surface.h"
 #include "common/random.h"
-
 #include "support/subject.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,4 @@
 #include "01-ray-casting/local_shading.h"
-
 #include "support/subject.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,4 @@
 #include "01-ray-casting/plane_intersection.h"
-
 #include "support/subject.h"
 
 #include <gtest/gtest.h>

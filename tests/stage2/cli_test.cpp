@@ -1,9 +1,9 @@
 // The stage-2 program as a user meets it: its flags, its scenes, and its errors.
 #include "common/image_io.h"
 
+#include "support/subject.h"
 #include "support/test_support.h"
 
-#include "support/subject.h"
 #include <gtest/gtest.h>
 
 namespace rt {

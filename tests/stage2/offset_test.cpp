@@ -3,8 +3,8 @@
 #include "02-whitted/ray_offset.h"
 #include "02-whitted/whitted_scene.h"
 #include "common/random.h"
-
 #include "support/subject.h"
+
 #include <gtest/gtest.h>
 
 namespace rt {

@@ -1,6 +1,6 @@
 #include "02-whitted/optics.h"
-
 #include "support/subject.h"
+
 #include <gtest/gtest.h>
 
 namespace rt {

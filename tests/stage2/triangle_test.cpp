@@ -4,6 +4,7 @@
 
 #include "stage2/records.h"
 #include "support/subject.h"
+
 #include <gtest/gtest.h>
 
 namespace rt {

@@ -1,9 +1,9 @@
 #include "01-ray-casting/render.h"
 #include "02-whitted/whitted.h"
 
+#include "support/subject.h"
 #include "support/test_support.h"
 
-#include "support/subject.h"
 #include <gtest/gtest.h>
 
 namespace rt {

@@ -5,7 +5,9 @@
 #include "04-radiometry/direct_lighting.h"
 #include "closed_form.h"
 #include "direct_estimators.h"
+#include "stage4/records.h"
 #include "support/sample_mean.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -40,12 +42,14 @@ Estimate estimate_at(const LightingScene& scene, DirectEstimator estimator, int 
   const Ray ray{origin, glm::normalize(target - origin)};
   DirectOptions options;
   options.estimator = estimator;
-  testing::SampleMean m;
-  for (int k = 0; k < samples; ++k) {
-    Rng rng(seed, 0, std::uint64_t(k));
-    m.add(direct_radiance(scene, ray, options, rng).x);
-  }
-  return m.estimate();
+  return testing::subject([&] {
+    testing::SampleMean m;
+    for (int k = 0; k < samples; ++k) {
+      Rng rng(seed, 0, std::uint64_t(k));
+      m.add(direct_radiance(scene, ray, options, rng).x);
+    }
+    return m.estimate();
+  });
 }
 
 void expect_every_estimator_finds(const LightingScene& scene, double exact, int samples) {
@@ -174,11 +178,11 @@ TEST(DirectRobustness, ALightSampleOfDensityZeroContributesNothing) {
   const ShadingPoint at{hit, Bsdf(LambertBrdf{Color(0.5f)}), frame, Vec3(0.0f, 0.0f, 1.0f)};
   const AreaEmitter& light = scene.emitters()[0];
   ASSERT_GT(max_component(light.radiance_towards(Vec3(0.0f), hit.point)), 0.0f) << "the light faces the point";
-  ASSERT_EQ(light.sample(hit.point, Vec2(0.0f)).pdf, 0.0f) << "the density underflows to exactly 0";
-  const DirectLightSample sample = sample_direct_light(scene, at, 0.5f, Vec2(0.0f), OffsetPolicy{});
+  ASSERT_EQ(RT_GRADED(light.sample)(hit.point, Vec2(0.0f)).pdf, 0.0f) << "the density underflows to exactly 0";
+  const DirectLightSample sample = RT_GRADED(sample_direct_light)(scene, at, 0.5f, Vec2(0.0f), OffsetPolicy{});
   EXPECT_EQ(sample.value, Color(0.0f));
   // Just off the boundary the same light is sampled as usual: finite and lit.
-  const DirectLightSample near = sample_direct_light(scene, at, 0.5f, Vec2(0.5f), OffsetPolicy{});
+  const DirectLightSample near = RT_GRADED(sample_direct_light)(scene, at, 0.5f, Vec2(0.5f), OffsetPolicy{});
   EXPECT_TRUE(is_finite(near.value));
   EXPECT_GT(near.pdf, 0.0f);
 }

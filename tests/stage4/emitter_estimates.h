@@ -6,6 +6,7 @@
 #include "04-radiometry/emitters.h"
 #include "common/random.h"
 #include "support/sample_mean.h"
+#include "support/subject.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -15,10 +16,12 @@ namespace rt::testing {
 // E[g(sample)] over `samples` draws of one generator seeded by `seed`, with its standard error.
 template <class G>
 Estimate mean_of(int samples, std::uint64_t seed, G&& g) {
-  Rng rng(seed, 0, 0);
-  SampleMean m;
-  for (int k = 0; k < samples; ++k) m.add(g(rng));
-  return m.estimate();
+  return subject([&] {
+    Rng rng(seed, 0, 0);
+    SampleMean m;
+    for (int k = 0; k < samples; ++k) m.add(g(rng));
+    return m.estimate();
+  });
 }
 
 // cos(theta_x) / p(w) for one sample that x sees from the emitter's front (0 otherwise, and for

@@ -7,8 +7,10 @@
 #include "common/display_transform.h"
 #include "common/spherical.h"
 #include "direct_estimators.h"
+#include "stage4/records.h"
 #include "support/chi_square.h"
 #include "support/sample_mean.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -22,37 +24,37 @@ TEST(PiecewiseConstant1D, SamplesAreExactBinaryFractions) {
   const PiecewiseConstant1D d(values);
   EXPECT_FLOAT_EQ(d.integral(), 2.0f);
   // Bin 0 has probability 1/4: u = 1/8 is half-way through it.
-  PiecewiseConstant1D::Sample s = d.sample(0.125f);
+  PiecewiseConstant1D::Sample s = RT_GRADED(d.sample)(0.125f);
   EXPECT_EQ(s.bin, 0);
   EXPECT_FLOAT_EQ(s.x, 0.25f);
   EXPECT_FLOAT_EQ(s.pdf, 0.5f);
   // u = 5/8 is half-way through bin 1's interval [1/4, 1).
-  s = d.sample(0.625f);
+  s = RT_GRADED(d.sample)(0.625f);
   EXPECT_EQ(s.bin, 1);
   EXPECT_FLOAT_EQ(s.x, 0.75f);
   EXPECT_FLOAT_EQ(s.pdf, 1.5f);
-  EXPECT_FLOAT_EQ(d.pdf(0.3f), 0.5f);
-  EXPECT_FLOAT_EQ(d.pdf(0.7f), 1.5f);
-  EXPECT_EQ(d.pdf(1.0f), 0.0f);
-  EXPECT_EQ(d.pdf(-0.1f), 0.0f);
-  EXPECT_LT(d.sample(0x1.fffffep-1f).x, 1.0f);
+  EXPECT_FLOAT_EQ(RT_GRADED(d.pdf)(0.3f), 0.5f);
+  EXPECT_FLOAT_EQ(RT_GRADED(d.pdf)(0.7f), 1.5f);
+  EXPECT_EQ(RT_GRADED(d.pdf)(1.0f), 0.0f);
+  EXPECT_EQ(RT_GRADED(d.pdf)(-0.1f), 0.0f);
+  EXPECT_LT(RT_GRADED(d.sample)(0x1.fffffep-1f).x, 1.0f);
 }
 
 TEST(PiecewiseConstant1D, EmptyBinsAreNeverSampled) {
   const std::vector<float> values{0.0f, 1.0f, 0.0f, 1.0f};
   const PiecewiseConstant1D d(values);
-  EXPECT_FLOAT_EQ(d.sample(0.0f).x, 0.25f);
-  EXPECT_FLOAT_EQ(d.sample(0.5f).x, 0.75f);
+  EXPECT_FLOAT_EQ(RT_GRADED(d.sample)(0.0f).x, 0.25f);
+  EXPECT_FLOAT_EQ(RT_GRADED(d.sample)(0.5f).x, 0.75f);
   float last = -1.0f;
   for (int k = 0; k < 1000; ++k) {
-    const PiecewiseConstant1D::Sample s = d.sample(float(k) / 1000.0f);
+    const PiecewiseConstant1D::Sample s = RT_GRADED(d.sample)(float(k) / 1000.0f);
     EXPECT_TRUE(s.bin == 1 || s.bin == 3);
     EXPECT_GT(s.pdf, 0.0f);
     EXPECT_GE(s.x, last) << "monotone in u";
     last = s.x;
   }
   const std::vector<float> zeros(5, 0.0f);
-  EXPECT_FLOAT_EQ(PiecewiseConstant1D(zeros).sample(0.3f).x, 0.3f) << "all zero: uniform";
+  EXPECT_FLOAT_EQ(RT_GRADED(PiecewiseConstant1D(zeros).sample)(0.3f).x, 0.3f) << "all zero: uniform";
 }
 
 TEST(PiecewiseConstant1D, ChiSquareAgainstItsDensity) {
@@ -61,8 +63,9 @@ TEST(PiecewiseConstant1D, ChiSquareAgainstItsDensity) {
   constexpr int kSamples = 200000, kBins = 32;  // four bins of the test per bin of the density
   std::vector<double> observed(kBins, 0.0), expected(kBins, 0.0);
   Rng rng(7, 0, 0);
-  for (int k = 0; k < kSamples; ++k) observed[size_t(std::min(int(d.sample(rng.uniform()).x * kBins), kBins - 1))] += 1.0;
-  for (int b = 0; b < kBins; ++b) expected[size_t(b)] = kSamples * d.pdf((b + 0.5f) / kBins) / kBins;
+  for (int k = 0; k < kSamples; ++k)
+    observed[size_t(std::min(int(RT_GRADED(d.sample)(rng.uniform()).x * kBins), kBins - 1))] += 1.0;
+  for (int b = 0; b < kBins; ++b) expected[size_t(b)] = kSamples * RT_GRADED(d.pdf)((b + 0.5f) / kBins) / kBins;
   const testing::ChiSquareResult r = testing::chi_square_test(observed, expected);
   EXPECT_TRUE(r.passed) << r.message;
 }
@@ -98,8 +101,8 @@ TEST(EnvironmentLight, DensityFollowsRadianceNotTexelCount) {
       const Vec3 d = latlong_direction(uv);
       const float c = std::cos(radians(30.0f)), s = std::sin(radians(30.0f));
       const Vec3 w(d.x * c + d.z * s, d.y, -d.x * s + d.z * c);
-      EXPECT_EQ(light.radiance(w), image->at(x, y)) << "texel " << x << ", " << y;
-      const double r = double(light.pdf(w)) / double(luminance(light.radiance(w)));
+      EXPECT_EQ(RT_GRADED(light.radiance)(w), image->at(x, y)) << "texel " << x << ", " << y;
+      const double r = double(RT_GRADED(light.pdf)(w)) / double(luminance(RT_GRADED(light.radiance)(w)));
       if (ratio == 0.0) ratio = r;
       EXPECT_NEAR(r / ratio, 1.0, 1e-4) << "texel " << x << ", " << y;
     }
@@ -116,11 +119,11 @@ TEST(EnvironmentLight, SamplesMatchTheirDensityChiSquare) {
   Rng rng(11, 0, 0);
   int consistent = 0;
   for (int k = 0; k < kSamples; ++k) {
-    const std::optional<EnvironmentSample> s = light.sample(rng.uniform2());
+    const std::optional<EnvironmentSample> s = RT_GRADED(light.sample)(rng.uniform2());
     ASSERT_TRUE(s.has_value());
     ASSERT_GT(s->pdf, 0.0f);
-    const float pdf = light.pdf(s->wi);
-    if (std::abs(pdf - s->pdf) <= 1e-3f * s->pdf && s->radiance == light.radiance(s->wi)) ++consistent;
+    const float pdf = RT_GRADED(light.pdf)(s->wi);
+    if (std::abs(pdf - s->pdf) <= 1e-3f * s->pdf && s->radiance == RT_GRADED(light.radiance)(s->wi)) ++consistent;
     const Vec2 uv = latlong_uv(s->wi);
     const int column = std::min(int(uv.x * kColumns), kColumns - 1), row = std::min(int((1.0f - uv.y) * kRows), kRows - 1);
     observed[size_t(row * kColumns + column)] += 1.0;
@@ -132,7 +135,7 @@ TEST(EnvironmentLight, SamplesMatchTheirDensityChiSquare) {
     for (int column = 0; column < kColumns; ++column) {
       const Vec2 uv((column + 0.5f) / kColumns, 1.0f - (row + 0.5f) / kRows);
       const float theta = kPi * (row + 0.5f) / kRows;
-      const double p_st = double(light.pdf(latlong_direction(uv))) * 2.0 * kPi * kPi * std::sin(theta);
+      const double p_st = double(RT_GRADED(light.pdf)(latlong_direction(uv))) * 2.0 * kPi * kPi * std::sin(theta);
       expected[size_t(row * kColumns + column)] = kSamples * p_st / (kColumns * kRows);
       total += p_st / (kColumns * kRows);
     }
@@ -146,14 +149,14 @@ TEST(EnvironmentLight, PolesGiveNoSampleAndNoInfiniteDensity) {
   // give no direction there (u.y = 0 picks the first row at t = 0) and pdf() must give 0, never
   // an infinite weight that would turn a pixel NaN.
   const EnvironmentLight light(environment_of(peaked_map(16, 8, 3, 6, 0, 2, Color(40.0f), Color(0.5f))));
-  for (const float ux : {0.0f, 0.3f, 0.9f}) EXPECT_FALSE(light.sample(Vec2(ux, 0.0f)).has_value()) << ux;
-  EXPECT_EQ(light.pdf(Vec3(0.0f, 1.0f, 0.0f)), 0.0f);
-  EXPECT_EQ(light.pdf(Vec3(0.0f, -1.0f, 0.0f)), 0.0f);
+  for (const float ux : {0.0f, 0.3f, 0.9f}) EXPECT_FALSE(RT_GRADED(light.sample)(Vec2(ux, 0.0f)).has_value()) << ux;
+  EXPECT_EQ(RT_GRADED(light.pdf)(Vec3(0.0f, 1.0f, 0.0f)), 0.0f);
+  EXPECT_EQ(RT_GRADED(light.pdf)(Vec3(0.0f, -1.0f, 0.0f)), 0.0f);
   // Just off the pole both are finite and agree.
-  const std::optional<EnvironmentSample> near = light.sample(Vec2(0.3f, 1e-4f));
+  const std::optional<EnvironmentSample> near = RT_GRADED(light.sample)(Vec2(0.3f, 1e-4f));
   ASSERT_TRUE(near.has_value());
   EXPECT_TRUE(std::isfinite(near->pdf));
-  EXPECT_NEAR(light.pdf(near->wi), near->pdf, 1e-2f * near->pdf);
+  EXPECT_NEAR(RT_GRADED(light.pdf)(near->wi), near->pdf, 1e-2f * near->pdf);
 }
 
 TEST(EnvironmentLight, ConstantEnvironmentIsUniformOnTheSphere) {
@@ -163,7 +166,7 @@ TEST(EnvironmentLight, ConstantEnvironmentIsUniformOnTheSphere) {
   EXPECT_TRUE(light.constant());
   Rng rng(3, 0, 0);
   for (int k = 0; k < 100; ++k) {
-    const std::optional<EnvironmentSample> s = light.sample(rng.uniform2());
+    const std::optional<EnvironmentSample> s = RT_GRADED(light.sample)(rng.uniform2());
     ASSERT_TRUE(s.has_value());
     EXPECT_FLOAT_EQ(s->pdf, 0.25f * kInvPi);
     EXPECT_EQ(s->radiance, e.scale);
@@ -181,12 +184,14 @@ using testing::kEstimators;
 Estimate estimate(const LightingScene& scene, const Ray& ray, DirectEstimator estimator, int samples, int channel = 0) {
   DirectOptions options;
   options.estimator = estimator;
-  testing::SampleMean m;
-  for (int k = 0; k < samples; ++k) {
-    Rng rng(5, 0, std::uint64_t(k));
-    m.add(direct_radiance(scene, ray, options, rng)[channel]);
-  }
-  return m.estimate();
+  return testing::subject([&] {
+    testing::SampleMean m;
+    for (int k = 0; k < samples; ++k) {
+      Rng rng(5, 0, std::uint64_t(k));
+      m.add(direct_radiance(scene, ray, options, rng)[channel]);
+    }
+    return m.estimate();
+  });
 }
 
 SceneDescription sphere_under(Environment environment, float albedo = 1.0f) {
@@ -213,7 +218,7 @@ TEST(EnvironmentFurnace, LambertianSphereReturnsItsAlbedoForEveryEstimator) {
       const LightingScene scene(sphere_under(e, rho));
       for (const Vec3 target : {Vec3(0, 1, 0), Vec3(0.6f, 0, 0.8f), Vec3(0, -1, 0)}) {
         const Ray ray{target * 3.0f, -target};
-        ASSERT_TRUE(scene.closest_hit(ray, Interval::positive()).has_value()) << "the ray must hit the ball";
+        ASSERT_TRUE(RT_GRADED(scene.closest_hit)(ray, Interval::positive()).has_value()) << "the ray must hit the ball";
         for (const DirectEstimator estimator : kEstimators) {
           const Estimate m = estimate(scene, ray, estimator, 20000);
           EXPECT_NEAR(m.mean, rho, 4.0 * m.standard_error + 1e-6)
@@ -253,7 +258,7 @@ class BrightPatch : public ::testing::Test {
 
 TEST_F(BrightPatch, EveryEstimatorFindsTheClosedFormIrradiance) {
   const LightingScene scene(description());
-  ASSERT_TRUE(scene.closest_hit(ray, Interval::positive()).has_value()) << "the ray must hit the floor";
+  ASSERT_TRUE(RT_GRADED(scene.closest_hit)(ray, Interval::positive()).has_value()) << "the ray must hit the floor";
   for (const DirectEstimator estimator : kEstimators) {
     const Estimate m = estimate(scene, ray, estimator, 40000);
     EXPECT_NEAR(m.mean, closed_form(), 4.0 * m.standard_error) << "estimator " << estimator_name(estimator) << ": +- " << m.standard_error;

@@ -13,6 +13,9 @@
 #include "common/random.h"
 #include "closed_form.h"
 #include "emitter_estimates.h"
+#include "stage3/records.h"
+#include "stage4/records.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -30,9 +33,9 @@ TEST(Radiometry, SolidAngleOfTheHemisphereIsTwoPi) {
 TEST(Radiometry, AreaToSolidAngle) {
   // A patch of area dA at distance 2, tilted 60 degrees: dw = dA cos / r^2 = dA / 8, so a density
   // of 1 per unit area is 8 per steradian.
-  EXPECT_FLOAT_EQ(area_to_solid_angle_pdf(1.0f, 2.0f, 0.5f), 8.0f);
-  EXPECT_FLOAT_EQ(area_to_solid_angle_pdf(0.25f, 2.0f, -0.5f), 2.0f);  // either side
-  EXPECT_TRUE(std::isinf(area_to_solid_angle_pdf(1.0f, 2.0f, 0.0f)));
+  EXPECT_FLOAT_EQ(RT_GRADED(area_to_solid_angle_pdf)(1.0f, 2.0f, 0.5f), 8.0f);
+  EXPECT_FLOAT_EQ(RT_GRADED(area_to_solid_angle_pdf)(0.25f, 2.0f, -0.5f), 2.0f);  // either side
+  EXPECT_TRUE(std::isinf(RT_GRADED(area_to_solid_angle_pdf)(1.0f, 2.0f, 0.0f)));
 }
 
 TEST(Radiometry, PointLightIrradianceAndLambertianRadiance) {
@@ -49,17 +52,19 @@ TEST(Radiometry, PolygonIrradianceMatchesTheConfigurationFactors) {
   const Vec3 p(0.0f), n(0, 0, 1);
   // A unit square with a corner above p at height 1 (Siegel & Howell): E = pi L F.
   const std::vector<Vec3> corner{{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-  EXPECT_NEAR(polygon_irradiance(p, n, corner, 1.0f), kPi * testing::factor_to_corner_rectangle(1, 1, 1), 1e-6);
-  EXPECT_NEAR(polygon_irradiance(p, n, corner, 1.0f), 0.435210, 1e-6);
+  EXPECT_NEAR(RT_GRADED(polygon_irradiance)(p, n, corner, 1.0f), kPi * testing::factor_to_corner_rectangle(1, 1, 1),
+              1e-6);
+  EXPECT_NEAR(RT_GRADED(polygon_irradiance)(p, n, corner, 1.0f), 0.435210, 1e-6);
   // A 2 x 2 square centred above, wound either way.
   const std::vector<Vec3> centred{{-1, -1, 1}, {-1, 1, 1}, {1, 1, 1}, {1, -1, 1}};
-  EXPECT_NEAR(polygon_irradiance(p, n, centred, 1.0f), kPi * testing::factor_to_centred_square(2, 1), 1e-5);
-  EXPECT_NEAR(polygon_irradiance(p, n, centred, 1.0f), 1.740840, 1e-5);
+  EXPECT_NEAR(RT_GRADED(polygon_irradiance)(p, n, centred, 1.0f), kPi * testing::factor_to_centred_square(2, 1), 1e-5);
+  EXPECT_NEAR(RT_GRADED(polygon_irradiance)(p, n, centred, 1.0f), 1.740840, 1e-5);
   // The triangle (0,0,1) (1,0,1) (0,1,1) from the origin.
-  EXPECT_NEAR(polygon_irradiance(p, n, std::vector<Vec3>{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}, 1.0f), 0.302300, 1e-6);
+  EXPECT_NEAR(RT_GRADED(polygon_irradiance)(p, n, std::vector<Vec3>{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}, 1.0f), 0.302300,
+              1e-6);
   // Far away it becomes a point source: E -> L A cos / r^2.
   const std::vector<Vec3> far{{-0.01f, -0.01f, 100}, {0.01f, -0.01f, 100}, {0.01f, 0.01f, 100}, {-0.01f, 0.01f, 100}};
-  EXPECT_NEAR(polygon_irradiance(p, n, far, 1.0f), 4e-4 / 1e4, 1e-12);
+  EXPECT_NEAR(RT_GRADED(polygon_irradiance)(p, n, far, 1.0f), 4e-4 / 1e4, 1e-12);
 }
 
 TEST(DiscreteDistribution, ChoosesInProportionToWeight) {
@@ -73,7 +78,7 @@ TEST(DiscreteDistribution, ChoosesInProportionToWeight) {
   std::vector<double> observed(weights.size(), 0.0), expected(weights.size());
   Rng rng(21, 0, 0);
   for (int k = 0; k < kN; ++k) {
-    const auto choice = d.sample(rng.uniform());
+    const auto choice = RT_GRADED(d.sample)(rng.uniform());
     ASSERT_FLOAT_EQ(choice.pmf, d.pmf(choice.index));
     observed[size_t(choice.index)] += 1.0;
   }
@@ -81,9 +86,9 @@ TEST(DiscreteDistribution, ChoosesInProportionToWeight) {
   const auto r = testing::chi_square_test(observed, expected);
   EXPECT_TRUE(r.passed) << r.message;
   // The ends of [0, 1): never a zero-weight item.
-  EXPECT_EQ(d.sample(0.0f).index, 0);
-  EXPECT_EQ(d.sample(1.0f - 0x1p-24f).index, 5);
-  EXPECT_EQ(d.sample(0.1f).index, 2);  // exactly at the boundary after the zero-weight item
+  EXPECT_EQ(RT_GRADED(d.sample)(0.0f).index, 0);
+  EXPECT_EQ(RT_GRADED(d.sample)(1.0f - 0x1p-24f).index, 5);
+  EXPECT_EQ(RT_GRADED(d.sample)(0.1f).index, 2);  // exactly at the boundary after the zero-weight item
 }
 
 using testing::Estimate;
@@ -96,7 +101,7 @@ TEST(EmitterSampling, TriangleReproducesLambertsFormula) {
   const AreaEmitter e{TriangleEmitter{Vec3(-0.5f, 0, 1), Vec3(0.3f, 0.9f, 1.2f), Vec3(0.8f, -0.4f, 0.9f)}, Color(1.0f)};
   const Estimate m = mean_of(200000, 22, [&](Rng& rng) { return projected_solid_angle_sample(e, x, n, rng.uniform2()); });
   const auto& t = std::get<TriangleEmitter>(e.geometry);
-  const double exact = polygon_irradiance(x, n, std::vector<Vec3>{t.v0, t.v1, t.v2}, 1.0f);
+  const double exact = RT_GRADED(polygon_irradiance)(x, n, std::vector<Vec3>{t.v0, t.v1, t.v2}, 1.0f);
   EXPECT_NEAR(m.mean, exact, 4.0 * m.standard_error);
   EXPECT_LT(m.standard_error, 0.01 * exact);
 }
@@ -119,7 +124,7 @@ TEST(EmitterSampling, QuadLightIsTwoTrianglesChosenByArea) {
     return 2.0 * projected_solid_angle_sample(e, x, n, rng.uniform2()) / choice.pmf;
   });
   const std::vector<Vec3> quad{{-1, 1, -1}, {2, 1, -1}, {0.5f, 1, 0.5f}, {-1, 1, 4}};
-  const double exact = polygon_irradiance(x, n, quad, 2.0f);
+  const double exact = RT_GRADED(polygon_irradiance)(x, n, quad, 2.0f);
   EXPECT_NEAR(m.mean, exact, 4.0 * m.standard_error);
   EXPECT_LT(m.standard_error, 0.01 * exact);
 }
@@ -162,14 +167,14 @@ TEST(EmitterSampling, SolidAngleAndPdfAgree) {
   for (const auto& [e, exact] : cases) {
     Rng rng(26, 0, 0);
     for (int k = 0; k < 1000; ++k) {
-      const EmitterSample s = e.sample(x, rng.uniform2());
+      const EmitterSample s = RT_GRADED(e.sample)(x, rng.uniform2());
       EXPECT_NEAR(glm::length(s.wi), 1.0f, 1e-5f);
       EXPECT_NEAR(glm::length(s.point - x), s.distance, 1e-4f * s.distance);
-      EXPECT_NEAR(e.pdf(x, s.point), s.pdf, 2e-3f * s.pdf);
+      EXPECT_NEAR(RT_GRADED(e.pdf)(x, s.point), s.pdf, 2e-3f * s.pdf);
     }
     if (exact > 0.0) {
       const Estimate m = mean_of(100000, 27, [&](Rng& r) {
-        const EmitterSample s = e.sample(x, r.uniform2());
+        const EmitterSample s = RT_GRADED(e.sample)(x, r.uniform2());
         return e.radiance_towards(s.point, x) == Color(0.0f) ? 0.0 : 1.0 / s.pdf;
       });
       EXPECT_NEAR(m.mean, exact, 1e-4 * exact + 4.0 * m.standard_error);
@@ -188,7 +193,7 @@ TEST(EmitterSampling, ConeSamplesLieOnTheSphereFacingTheShadingPoint) {
   Rng rng(29, 0, 0);
   for (const Vec3 x : {Vec3(0.0f), Vec3(0.3f, 0.0f, -0.2f), Vec3(4.0f, -1.0f, 2.0f)}) {
     for (int k = 0; k < 1000; ++k) {
-      const EmitterSample s = e.sample(x, rng.uniform2());
+      const EmitterSample s = RT_GRADED(e.sample)(x, rng.uniform2());
       ASSERT_NEAR(glm::length(s.point - center), radius, 1e-4f) << "sample " << k << " is not on the sphere";
       ASSERT_GE(glm::dot(s.point - center, x - s.point), -1e-4f) << "sample " << k << " is on the far side";
     }
@@ -222,29 +227,29 @@ TEST(LightingScene, FindsDisksAndNamesEmitters) {
                {"type": "quad", "material": "light", "vertices": [[-1, 3, -1], [-1, 3, 1], [1, 3, 1], [1, 3, -1]]}]})";
   const LightingScene scene(parse_scene(json, "disk.json"));
   ASSERT_EQ(scene.emitters().size(), 2u);  // the disk, and the square quad as one rectangle
-  const auto up = scene.closest_hit(Ray{Vec3(0.1f, 0, 0), Vec3(0, 1, 0)}, Interval::positive());
+  const auto up = RT_GRADED(scene.closest_hit)(Ray{Vec3(0.1f, 0, 0), Vec3(0, 1, 0)}, Interval::positive());
   ASSERT_TRUE(up);
   EXPECT_EQ(up->primitive, 1);
   EXPECT_NEAR(up->t, 1.0f, 1e-6f);
   EXPECT_TRUE(up->front_face);  // the disk faces down, towards the ray's origin
-  EXPECT_EQ(scene.emitted(*up), Color(1.0f));
+  EXPECT_EQ(RT_GRADED(scene.emitted)(*up), Color(1.0f));
   EXPECT_EQ(scene.emitter_index(*up), 0);
-  const auto beside = scene.closest_hit(Ray{Vec3(0.7f, 0, 0), Vec3(0, 1, 0)}, Interval::positive());
+  const auto beside = RT_GRADED(scene.closest_hit)(Ray{Vec3(0.7f, 0, 0), Vec3(0, 1, 0)}, Interval::positive());
   ASSERT_TRUE(beside);
   EXPECT_EQ(beside->primitive, 2);
   EXPECT_EQ(scene.emitter_index(*beside), 1);
   EXPECT_TRUE(std::holds_alternative<RectangleEmitter>(scene.emitters()[1].geometry));
   // Both of the rectangle's triangles are the one emitter.
-  const auto other_half = scene.closest_hit(Ray{Vec3(-0.7f, 0, 0.5f), Vec3(0, 1, 0)}, Interval::positive());
+  const auto other_half = RT_GRADED(scene.closest_hit)(Ray{Vec3(-0.7f, 0, 0.5f), Vec3(0, 1, 0)}, Interval::positive());
   ASSERT_TRUE(other_half);
   EXPECT_NE(other_half->triangle, beside->triangle);
   EXPECT_EQ(scene.emitter_index(*other_half), 1);
-  const auto down = scene.closest_hit(Ray{Vec3(0, 0, 0), Vec3(0, -1, 0)}, Interval::positive());
+  const auto down = RT_GRADED(scene.closest_hit)(Ray{Vec3(0, 0, 0), Vec3(0, -1, 0)}, Interval::positive());
   ASSERT_TRUE(down);
   EXPECT_EQ(down->primitive, 0);  // the shape's index in the file, whatever its kind
   EXPECT_EQ(scene.emitter_index(*down), -1);
-  EXPECT_TRUE(scene.occluded(Ray{Vec3(0.1f, 0, 0), Vec3(0, 1, 0)}, Interval{0.0f, 2.0f}));
-  EXPECT_FALSE(scene.occluded(Ray{Vec3(0.1f, 0, 0), Vec3(0, 1, 0)}, Interval{0.0f, 0.9f}));
+  EXPECT_TRUE(RT_GRADED(scene.occluded)(Ray{Vec3(0.1f, 0, 0), Vec3(0, 1, 0)}, Interval{0.0f, 2.0f}));
+  EXPECT_FALSE(RT_GRADED(scene.occluded)(Ray{Vec3(0.1f, 0, 0), Vec3(0, 1, 0)}, Interval{0.0f, 0.9f}));
 }
 
 // Disks lie in the BVH with the other kinds (DiskKind, 04-radiometry/disk_kind.h): every tree
@@ -277,15 +282,15 @@ TEST(LightingScene, DisksInTheBvhAgreeWithBruteForce) {
     const BvhAggregate bvh(set, BvhBuildOptions{.wide = wide});
     int disk_hits = 0;
     for (size_t i = 0; i < rays.size(); ++i) {
-      const auto a = naive.closest_hit(rays[i], Interval::positive());
-      const auto b = bvh.closest_hit(rays[i], Interval::positive());
+      const auto a = RT_GRADED(naive.closest_hit)(rays[i], Interval::positive());
+      const auto b = RT_GRADED(bvh.closest_hit)(rays[i], Interval::positive());
       ASSERT_EQ(a.has_value(), b.has_value()) << "ray " << i << (wide ? ", 4-wide" : "");
       if (!a) continue;
       EXPECT_EQ(a->t, b->t) << "ray " << i;
       EXPECT_EQ(a->kind, b->kind) << "ray " << i;
       EXPECT_EQ(a->index, b->index) << "ray " << i;
       disk_hits += a->kind == LightingPrimitives::index_of<DiskKind>() ? 1 : 0;
-      EXPECT_EQ(bvh.occluded(rays[i], Interval::positive()), true) << "ray " << i;
+      EXPECT_EQ(RT_GRADED(bvh.occluded)(rays[i], Interval::positive()), true) << "ray " << i;
     }
     EXPECT_GT(disk_hits, 2000) << "the rays are aimed at disks and must mostly hit one";
   }

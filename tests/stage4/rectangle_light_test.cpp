@@ -9,6 +9,7 @@
 #include "support/chi_square.h"
 #include "emitter_estimates.h"
 #include "common/random.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -113,7 +114,7 @@ TEST(RectangleLight, BothStrategiesReproduceLambertsFormulaNearAndFar) {
   const Vec3 tilted = glm::normalize(Vec3(0.05f, 1.0f, 0.05f));
   for (const Case c : {Case{Vec3(0.4f, 0.23f, 0.1f), Vec3(0, 1, 0), "near"}, Case{kBelow, tilted, "middle"},
                        Case{Vec3(1.0f, -20.0f, 3.0f), tilted, "far"}}) {
-    const double exact = polygon_irradiance(c.x, c.n, corners(kNear), 1.0f);
+    const double exact = RT_GRADED(polygon_irradiance)(c.x, c.n, corners(kNear), 1.0f);
     for (const RectangleSampling strategy : {RectangleSampling::area, RectangleSampling::solid_angle}) {
       RectangleEmitter r = kNear;
       r.strategy = strategy;

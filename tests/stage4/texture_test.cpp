@@ -5,6 +5,7 @@
 #include "04-radiometry/direct_lighting.h"
 #include "04-radiometry/texture.h"
 #include "common/spherical.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -31,65 +32,67 @@ ImageTexture two_by_two(TextureWrap wrap, TextureFilter filter) {
 }
 
 TEST(WrapTexel, RepeatIsModuloWithoutNegativeResults) {
-  EXPECT_EQ(wrap_texel(0, 4, TextureWrap::repeat), 0);
-  EXPECT_EQ(wrap_texel(3, 4, TextureWrap::repeat), 3);
-  EXPECT_EQ(wrap_texel(4, 4, TextureWrap::repeat), 0);
-  EXPECT_EQ(wrap_texel(9, 4, TextureWrap::repeat), 1);
-  EXPECT_EQ(wrap_texel(-1, 4, TextureWrap::repeat), 3);
-  EXPECT_EQ(wrap_texel(-4, 4, TextureWrap::repeat), 0);
-  EXPECT_EQ(wrap_texel(-5, 4, TextureWrap::repeat), 3);
-  EXPECT_EQ(wrap_texel(-1, 1, TextureWrap::repeat), 0);
+  EXPECT_EQ(RT_GRADED(wrap_texel)(0, 4, TextureWrap::repeat), 0);
+  EXPECT_EQ(RT_GRADED(wrap_texel)(3, 4, TextureWrap::repeat), 3);
+  EXPECT_EQ(RT_GRADED(wrap_texel)(4, 4, TextureWrap::repeat), 0);
+  EXPECT_EQ(RT_GRADED(wrap_texel)(9, 4, TextureWrap::repeat), 1);
+  EXPECT_EQ(RT_GRADED(wrap_texel)(-1, 4, TextureWrap::repeat), 3);
+  EXPECT_EQ(RT_GRADED(wrap_texel)(-4, 4, TextureWrap::repeat), 0);
+  EXPECT_EQ(RT_GRADED(wrap_texel)(-5, 4, TextureWrap::repeat), 3);
+  EXPECT_EQ(RT_GRADED(wrap_texel)(-1, 1, TextureWrap::repeat), 0);
 }
 
 TEST(WrapTexel, ClampStopsAtBothEdges) {
-  EXPECT_EQ(wrap_texel(-1, 4, TextureWrap::clamp), 0);
-  EXPECT_EQ(wrap_texel(0, 4, TextureWrap::clamp), 0);
-  EXPECT_EQ(wrap_texel(3, 4, TextureWrap::clamp), 3);
-  EXPECT_EQ(wrap_texel(4, 4, TextureWrap::clamp), 3);
-  EXPECT_EQ(wrap_texel(1000, 4, TextureWrap::clamp), 3);
+  EXPECT_EQ(RT_GRADED(wrap_texel)(-1, 4, TextureWrap::clamp), 0);
+  EXPECT_EQ(RT_GRADED(wrap_texel)(0, 4, TextureWrap::clamp), 0);
+  EXPECT_EQ(RT_GRADED(wrap_texel)(3, 4, TextureWrap::clamp), 3);
+  EXPECT_EQ(RT_GRADED(wrap_texel)(4, 4, TextureWrap::clamp), 3);
+  EXPECT_EQ(RT_GRADED(wrap_texel)(1000, 4, TextureWrap::clamp), 3);
 }
 
 TEST(TextureLookup, NearestReturnsTheTexelThatCoversTheCoordinates) {
   const ImageTexture t = two_by_two(TextureWrap::clamp, TextureFilter::nearest);
   // v runs up: the top row holds v in (0.5, 1].
-  EXPECT_EQ(texture_lookup(t, Vec2(0.1f, 0.9f)), kTopLeft);
-  EXPECT_EQ(texture_lookup(t, Vec2(0.9f, 0.9f)), kTopRight);
-  EXPECT_EQ(texture_lookup(t, Vec2(0.1f, 0.1f)), kBottomLeft);
-  EXPECT_EQ(texture_lookup(t, Vec2(0.9f, 0.1f)), kBottomRight);
+  EXPECT_EQ(RT_GRADED(texture_lookup)(t, Vec2(0.1f, 0.9f)), kTopLeft);
+  EXPECT_EQ(RT_GRADED(texture_lookup)(t, Vec2(0.9f, 0.9f)), kTopRight);
+  EXPECT_EQ(RT_GRADED(texture_lookup)(t, Vec2(0.1f, 0.1f)), kBottomLeft);
+  EXPECT_EQ(RT_GRADED(texture_lookup)(t, Vec2(0.9f, 0.1f)), kBottomRight);
   // Texel (i, j) covers [i, i + 1) x [j, j + 1) of (u W, (1 - v) H): the boundary u = 0.5 belongs
   // to the right-hand column, and v = 0.5 ((1 - v) H = 1) to the bottom row.
-  EXPECT_EQ(texture_lookup(t, Vec2(0.5f, 0.25f)), kBottomRight);
-  EXPECT_EQ(texture_lookup(t, Vec2(0.25f, 0.5f)), kBottomLeft);
+  EXPECT_EQ(RT_GRADED(texture_lookup)(t, Vec2(0.5f, 0.25f)), kBottomRight);
+  EXPECT_EQ(RT_GRADED(texture_lookup)(t, Vec2(0.25f, 0.5f)), kBottomLeft);
 }
 
 TEST(TextureLookup, BilinearWeightsAreExactOnTwoByTwo) {
   const ImageTexture t = two_by_two(TextureWrap::clamp, TextureFilter::bilinear);
   // At a texel's centre, that texel alone.
-  EXPECT_EQ(texture_lookup(t, Vec2(0.25f, 0.75f)), kTopLeft);
-  EXPECT_EQ(texture_lookup(t, Vec2(0.75f, 0.25f)), kBottomRight);
+  EXPECT_EQ(RT_GRADED(texture_lookup)(t, Vec2(0.25f, 0.75f)), kTopLeft);
+  EXPECT_EQ(RT_GRADED(texture_lookup)(t, Vec2(0.75f, 0.25f)), kBottomRight);
   // Midway between all four centres: each weighs 1/4.
-  EXPECT_EQ(texture_lookup(t, Vec2(0.5f, 0.5f)), 0.25f * (kTopLeft + kTopRight + kBottomLeft + kBottomRight));
+  EXPECT_EQ(RT_GRADED(texture_lookup)(t, Vec2(0.5f, 0.5f)),
+            0.25f * (kTopLeft + kTopRight + kBottomLeft + kBottomRight));
   // A quarter of the way from the top-left centre to the top-right one: weights 3/4 and 1/4.
-  EXPECT_EQ(texture_lookup(t, Vec2(0.375f, 0.75f)), 0.75f * kTopLeft + 0.25f * kTopRight);
+  EXPECT_EQ(RT_GRADED(texture_lookup)(t, Vec2(0.375f, 0.75f)), 0.75f * kTopLeft + 0.25f * kTopRight);
   // And a quarter of the way down too: (3/4)(3/4), (1/4)(3/4), (3/4)(1/4), (1/4)(1/4).
   const Color expected = 0.5625f * kTopLeft + 0.1875f * kTopRight + 0.1875f * kBottomLeft + 0.0625f * kBottomRight;
-  const Color got = texture_lookup(t, Vec2(0.375f, 0.625f));
+  const Color got = RT_GRADED(texture_lookup)(t, Vec2(0.375f, 0.625f));
   for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(got[c], expected[c]) << "channel " << c;
 }
 
 TEST(TextureLookup, EdgesFollowTheWrapMode) {
   // At the corner (0, 0), clamp sees only the bottom-left texel; repeat blends the four texels that
   // meet there once the image is tiled.
-  EXPECT_EQ(texture_lookup(two_by_two(TextureWrap::clamp, TextureFilter::bilinear), Vec2(0.0f)), kBottomLeft);
-  EXPECT_EQ(texture_lookup(two_by_two(TextureWrap::repeat, TextureFilter::bilinear), Vec2(0.0f)),
+  EXPECT_EQ(RT_GRADED(texture_lookup)(two_by_two(TextureWrap::clamp, TextureFilter::bilinear), Vec2(0.0f)),
+            kBottomLeft);
+  EXPECT_EQ(RT_GRADED(texture_lookup)(two_by_two(TextureWrap::repeat, TextureFilter::bilinear), Vec2(0.0f)),
             0.25f * (kTopLeft + kTopRight + kBottomLeft + kBottomRight));
   // Repeat: whole periods away, the same value; clamp: beyond the edge, the edge.
   const ImageTexture repeat = two_by_two(TextureWrap::repeat, TextureFilter::nearest);
-  EXPECT_EQ(texture_lookup(repeat, Vec2(3.1f, -1.1f)), texture_lookup(repeat, Vec2(0.1f, 0.9f)));
-  EXPECT_EQ(texture_lookup(repeat, Vec2(3.1f, -1.1f)), kTopLeft);
+  EXPECT_EQ(RT_GRADED(texture_lookup)(repeat, Vec2(3.1f, -1.1f)), RT_GRADED(texture_lookup)(repeat, Vec2(0.1f, 0.9f)));
+  EXPECT_EQ(RT_GRADED(texture_lookup)(repeat, Vec2(3.1f, -1.1f)), kTopLeft);
   const ImageTexture clamp = two_by_two(TextureWrap::clamp, TextureFilter::nearest);
-  EXPECT_EQ(texture_lookup(clamp, Vec2(-7.0f, 5.0f)), kTopLeft);
-  EXPECT_EQ(texture_lookup(clamp, Vec2(1.0f, 0.0f)), kBottomRight);
+  EXPECT_EQ(RT_GRADED(texture_lookup)(clamp, Vec2(-7.0f, 5.0f)), kTopLeft);
+  EXPECT_EQ(RT_GRADED(texture_lookup)(clamp, Vec2(1.0f, 0.0f)), kBottomRight);
 }
 
 TEST(TextureLookup, HugeAndNonFiniteCoordinatesStayInside) {
@@ -97,7 +100,7 @@ TEST(TextureLookup, HugeAndNonFiniteCoordinatesStayInside) {
     for (const TextureFilter filter : {TextureFilter::nearest, TextureFilter::bilinear}) {
       const ImageTexture t = two_by_two(wrap, filter);
       for (const Vec2 uv : {Vec2(1e18f, -1e18f), Vec2(-3e38f, 3e38f), Vec2(kInfinity, 0.5f), Vec2(std::nanf(""), 0.5f)}) {
-        const Color c = texture_lookup(t, uv);
+        const Color c = RT_GRADED(texture_lookup)(t, uv);
         EXPECT_TRUE(is_finite(c) && min_component(c) >= 0.0f && max_component(c) <= 1.0f);
       }
     }
@@ -111,13 +114,14 @@ TEST(TextureLookup, OneColourTextureReturnsItsColourBitForBit) {
       t.filter = filter;
       t.wrap = wrap;
       for (const Vec2 uv : {Vec2(0.0f), Vec2(0.123f, 0.877f), Vec2(0.99f, 0.51f), Vec2(-2.3f, 7.7f)})
-        EXPECT_EQ(texture_lookup(t, uv), t.texels->at(0, 0));
+        EXPECT_EQ(RT_GRADED(texture_lookup)(t, uv), t.texels->at(0, 0));
     }
 }
 
 // Texture coordinates as the shapes report them (docs/scene-format.md).
 Hit first_hit(const LightingScene& scene, Vec3 from, Vec3 to) {
-  const std::optional<Hit> hit = scene.closest_hit(Ray{from, glm::normalize(to - from)}, Interval::positive());
+  const std::optional<Hit> hit =
+      RT_GRADED(scene.closest_hit)(Ray{from, glm::normalize(to - from)}, Interval::positive());
   EXPECT_TRUE(hit.has_value());
   return hit.value_or(Hit{});
 }
@@ -195,10 +199,12 @@ TEST(TextureCoordinates, DiskFillsTheUnitSquareAndPlaneCountsSceneUnits) {
 // A texture reaches the BRDF: the Lambertian albedo at a hit is the texel there (-1 where the ray
 // finds nothing, which no texel is).
 Color albedo_seen(const LightingScene& scene, Vec3 from, Vec3 to) {
-  const std::optional<Hit> hit = scene.closest_hit(Ray{from, glm::normalize(to - from)}, Interval::positive());
-  if (!hit) return Color(-1.0f);
-  const ShadingPoint at = make_shading_point(scene, *hit, glm::normalize(from - to));
-  return at.bsdf.eval(at.wo, Vec3(0, 0, 1)) * kPi;  // f = rho / pi
+  return testing::subject([&] {
+    const std::optional<Hit> hit = scene.closest_hit(Ray{from, glm::normalize(to - from)}, Interval::positive());
+    if (!hit) return Color(-1.0f);
+    const ShadingPoint at = make_shading_point(scene, *hit, glm::normalize(from - to));
+    return at.bsdf.eval(at.wo, Vec3(0, 0, 1)) * kPi;  // f = rho / pi
+  });
 }
 
 TEST(TexturedMaterial, MarkedCornerLandsTopLeftOnAQuad) {
@@ -222,14 +228,21 @@ TEST(TexturedMaterial, SpecularTextureIsTheMicrofacetF0) {
   const LightingScene scene(d);
   const Vec3 eye(0.5f, 0.5f, 3.0f);
   // Where the texture is blue, the BRDF is the microfacet model with a blue F0.
-  const std::optional<Hit> hit =
-      scene.closest_hit(Ray{eye, glm::normalize(Vec3(0.1f, 0.1f, 0.0f) - eye)}, Interval::positive());
-  ASSERT_TRUE(hit.has_value());
-  const ShadingPoint at = make_shading_point(scene, *hit, glm::normalize(eye - hit->point));
-  const Bsdf blue(MicrofacetBrdf{kBottomLeft, GgxDistribution{d.materials[0].roughness}});
   const Vec3 wi = glm::normalize(Vec3(0.2f, -0.1f, 1.0f));
-  EXPECT_EQ(at.bsdf.eval(at.wo, wi), blue.eval(at.wo, wi));
-  EXPECT_NE(at.bsdf.eval(at.wo, wi), Bsdf(MicrofacetBrdf{Color(1.0f), GgxDistribution{d.materials[0].roughness}}).eval(at.wo, wi));
+  // The BRDF at the hit, the blue model's and the white model's, for the same pair of directions.
+  const auto values = testing::subject([&]() -> std::optional<std::array<Color, 3>> {
+    const std::optional<Hit> hit =
+        scene.closest_hit(Ray{eye, glm::normalize(Vec3(0.1f, 0.1f, 0.0f) - eye)}, Interval::positive());
+    if (!hit) return std::nullopt;
+    const ShadingPoint at = make_shading_point(scene, *hit, glm::normalize(eye - hit->point));
+    const Bsdf blue(MicrofacetBrdf{kBottomLeft, GgxDistribution{d.materials[0].roughness}});
+    const Bsdf white(MicrofacetBrdf{Color(1.0f), GgxDistribution{d.materials[0].roughness}});
+    return std::array{at.bsdf.eval(at.wo, wi), blue.eval(at.wo, wi), white.eval(at.wo, wi)};
+  });
+  ASSERT_TRUE(values.has_value());
+  const auto& [at_hit, blue, white] = *values;
+  EXPECT_EQ(at_hit, blue);
+  EXPECT_NE(at_hit, white);
 }
 
 // The first promise: a one-colour texture renders exactly as the constant albedo does.
@@ -260,8 +273,10 @@ TEST(TexturedMaterial, OneColourTextureRendersLikeTheConstantBitForBit) {
     const SceneDescription d = scene_with(textured == 1);
     const LightingScene scene(d);
     const Camera camera(d.camera, settings.width, settings.height);
-    images[textured] = render_image(camera, settings, 1, [&](const Ray& ray, Sampler& rng) {
-      return direct_radiance(scene, ray, DirectOptions{}, rng);
+    images[textured] = testing::subject([&] {
+      return render_image(camera, settings, 1, [&](const Ray& ray, Sampler& rng) {
+        return direct_radiance(scene, ray, DirectOptions{}, rng);
+      });
     });
   }
   // The centre is the ball (lit, and darker than the environment's 1 around it), not the sky.

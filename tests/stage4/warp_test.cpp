@@ -3,8 +3,8 @@
 #include "04-radiometry/ggx.h"
 #include "04-radiometry/warp.h"
 #include "support/chi_square.h"
-
 #include "support/subject.h"
+
 #include <gtest/gtest.h>
 
 namespace rt {

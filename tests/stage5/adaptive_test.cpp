@@ -4,6 +4,7 @@
 // heat map and refusals are tested with its other flags (cli_test.cpp, Stage5Adaptive).
 #include "05-path-tracing/adaptive_sampling.h"
 #include "05-path-tracing/path_render.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -20,22 +21,22 @@ TEST(PixelConverged, HalfWidthAgainstTheToleranceAtTheBoundary) {
   // {1, 3}: mean 2, unbiased variance ((1 - 2)^2 + (3 - 2)^2) / (2 - 1) = 2, so I = 1.96 sqrt(2 / 2)
   // = 1.96, and the test passes exactly from tolerance 1.96 / 2 = 0.98 on (<=, not <).
   const PixelStatistics two = of({1.0, 3.0});
-  EXPECT_TRUE(pixel_converged(two, 0.98f));
-  EXPECT_FALSE(pixel_converged(two, 0.979f));
+  EXPECT_TRUE(RT_GRADED(pixel_converged)(two, 0.98f));
+  EXPECT_FALSE(RT_GRADED(pixel_converged)(two, 0.979f));
   // With the biased variance (divided by n = 2) I would be 1.386 and 0.7 would pass.
-  EXPECT_FALSE(pixel_converged(two, 0.7f));
+  EXPECT_FALSE(RT_GRADED(pixel_converged)(two, 0.7f));
   // Four samples {1, 3, 1, 3}: variance 4/3, I = 1.96 sqrt(4 / 3 / 4) = 1.1316, boundary 0.5658.
   const PixelStatistics four = of({1.0, 3.0, 1.0, 3.0});
-  EXPECT_TRUE(pixel_converged(four, 0.566f));
-  EXPECT_FALSE(pixel_converged(four, 0.565f));
+  EXPECT_TRUE(RT_GRADED(pixel_converged)(four, 0.566f));
+  EXPECT_FALSE(RT_GRADED(pixel_converged)(four, 0.565f));
 }
 
 TEST(PixelConverged, NeedsTwoSamplesAndTakesAFlatPixelAtOnce) {
-  EXPECT_FALSE(pixel_converged(of({}), 1.0f));
-  EXPECT_FALSE(pixel_converged(of({5.0}), 1.0f)) << "one sample says nothing of the spread";
-  EXPECT_TRUE(pixel_converged(of({0.5, 0.5, 0.5}), 1e-6f)) << "no spread: done";
-  EXPECT_TRUE(pixel_converged(of({0.0, 0.0}), 1e-6f)) << "black and certain: done";
-  EXPECT_FALSE(pixel_converged(of({0.0, 2.0, 0.0, 0.0}), 0.5f));
+  EXPECT_FALSE(RT_GRADED(pixel_converged)(of({}), 1.0f));
+  EXPECT_FALSE(RT_GRADED(pixel_converged)(of({5.0}), 1.0f)) << "one sample says nothing of the spread";
+  EXPECT_TRUE(RT_GRADED(pixel_converged)(of({0.5, 0.5, 0.5}), 1e-6f)) << "no spread: done";
+  EXPECT_TRUE(RT_GRADED(pixel_converged)(of({0.0, 0.0}), 1e-6f)) << "black and certain: done";
+  EXPECT_FALSE(RT_GRADED(pixel_converged)(of({0.0, 2.0, 0.0, 0.0}), 0.5f));
 }
 
 // A scene of hard and easy pixels: a glossy floor under a sky with a bright patch, and plain sky.
@@ -63,8 +64,10 @@ SampleSums render(const LightingScene& scene, const SceneDescription& d, const R
                   const AdaptiveSettings* adaptive) {
   const Camera camera(d.camera, settings.width, settings.height);
   SampleGuard guard;
-  return render_path_samples(scene, camera, settings, PathOptions{}, SamplerKind::independent, threads, guard,
-                             nullptr, adaptive);
+  return testing::subject([&] {
+    return render_path_samples(scene, camera, settings, PathOptions{}, SamplerKind::independent, threads, guard,
+                               nullptr, adaptive);
+  });
 }
 
 class AdaptiveRender : public ::testing::Test {

@@ -4,6 +4,7 @@
 // BRDF each with its weight, agreeing with next-event estimation alone.
 #include "05-path-tracing/path_render.h"
 #include "path_estimates.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -45,11 +46,12 @@ TEST(EnvironmentPaths, CameraAndMirrorSeeTheEnvironmentExactly) {
     // Straight into the sky, in the bright patch (theta 30 degrees, phi 60 degrees).
     const Vec3 up(std::sin(radians(30.0f)) * std::cos(radians(60.0f)), std::cos(radians(30.0f)),
                   std::sin(radians(30.0f)) * std::sin(radians(60.0f)));
-    EXPECT_EQ(path_radiance(scene, Ray{Vec3(0, 1, 0), up}, options, rng), Color(50.0f));
+    EXPECT_EQ(RT_GRADED(path_radiance)(scene, Ray{Vec3(0, 1, 0), up}, options, rng), Color(50.0f));
     // Down onto the mirror floor, whose reflection rises into the patch: the reflectance times it,
     // counted whole (light sampling cannot serve a mirror, so no weight may shrink it).
     const Vec3 down(up.x, -up.y, up.z);
-    EXPECT_EQ(path_radiance(scene, Ray{Vec3(0, 1, 0) - 2.0f * down, down}, options, rng), Color(25.0f, 12.5f, 50.0f))
+    EXPECT_EQ(RT_GRADED(path_radiance)(scene, Ray{Vec3(0, 1, 0) - 2.0f * down, down}, options, rng),
+              Color(25.0f, 12.5f, 50.0f))
         << integrator_name(integrator);
   }
 }
@@ -69,12 +71,12 @@ TEST(EnvironmentPaths, WithoutAnEnvironmentTheBackgroundIsSeenAndLightsWhole) {
   d.background = Color(0.25f, 0.5f, 1.0f);
   const LightingScene scene(d);
   const Ray down{Vec3(0, 1, 0), glm::normalize(Vec3(0.3f, -1.0f, 0.2f))};
-  ASSERT_TRUE(scene.closest_hit(down, Interval::positive()).has_value()) << "the ray must hit the floor";
+  ASSERT_TRUE(RT_GRADED(scene.closest_hit)(down, Interval::positive()).has_value()) << "the ray must hit the floor";
   for (const PathIntegrator integrator : kIntegrators) {
     PathOptions options;
     options.integrator = integrator;
     Rng rng(1, 0, 0);
-    EXPECT_EQ(path_radiance(scene, Ray{Vec3(0, 1, 0), Vec3(0, 1, 0)}, options, rng), d.background)
+    EXPECT_EQ(RT_GRADED(path_radiance)(scene, Ray{Vec3(0, 1, 0), Vec3(0, 1, 0)}, options, rng), d.background)
         << integrator_name(integrator);
     for (int channel = 0; channel < 3; ++channel) {
       const Estimate m = estimate(scene, down, options, 4000, 1, channel);
@@ -93,7 +95,7 @@ TEST(EnvironmentPaths, WhiteFurnaceForEveryIntegrator) {
     white.scale = Color(1.0f);
     const LightingScene scene(scene_of(ball, Sphere{Vec3(0.0f), 1.0f}, white));
     const Ray ray{Vec3(0.3f, 0.4f, 3.0f), Vec3(0, 0, -1)};
-    ASSERT_TRUE(scene.closest_hit(ray, Interval::positive()).has_value()) << "the ray must hit the ball";
+    ASSERT_TRUE(RT_GRADED(scene.closest_hit)(ray, Interval::positive()).has_value()) << "the ray must hit the ball";
     for (const PathIntegrator integrator : kIntegrators) {
       PathOptions options;
       options.integrator = integrator;
@@ -135,7 +137,7 @@ TEST(EnvironmentPaths, MisAgreesWithNextEventEstimationOnAGlossyFloor) {
   const float theta = radians(33.75f), phi = radians(67.5f);
   const Vec3 r(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
   const Ray ray{Vec3(-r.x, r.y, -r.z) * 2.0f, glm::normalize(Vec3(r.x, -r.y, r.z))};
-  ASSERT_TRUE(scene.closest_hit(ray, Interval::positive()).has_value()) << "the ray must hit the floor";
+  ASSERT_TRUE(RT_GRADED(scene.closest_hit)(ray, Interval::positive()).has_value()) << "the ray must hit the floor";
   PathOptions nee, mis;
   nee.integrator = PathIntegrator::light_sampling;
   mis.integrator = PathIntegrator::mis;

@@ -5,6 +5,7 @@
 #include "05-path-tracing/path_tracer.h"
 #include "common/scene.h"
 #include "support/sample_mean.h"
+#include "support/subject.h"
 
 #include <string>
 
@@ -15,12 +16,14 @@ using testing::Estimate;
 // `paths` independent paths along one ray: mean and standard error of one channel.
 inline Estimate estimate(const LightingScene& scene, const Ray& ray, const PathOptions& options, int paths,
                          std::uint64_t seed = 1, int channel = 0) {
-  testing::SampleMean m;
-  for (int k = 0; k < paths; ++k) {
-    Rng rng(seed, 0, std::uint64_t(k));
-    m.add(path_radiance(scene, ray, options, rng)[channel]);
-  }
-  return m.estimate();
+  return testing::subject([&] {
+    testing::SampleMean m;
+    for (int k = 0; k < paths; ++k) {
+      Rng rng(seed, 0, std::uint64_t(k));
+      m.add(path_radiance(scene, ray, options, rng)[channel]);
+    }
+    return m.estimate();
+  });
 }
 
 // A closed cube [-s, s]^3, every wall facing in, of albedo rho and emission Le: L = Le / (1 - rho)

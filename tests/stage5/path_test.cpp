@@ -5,6 +5,7 @@
 #include "stage4/closed_form.h"
 #include "stage5/path_estimates.h"
 
+#include "support/subject.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
@@ -61,7 +62,7 @@ TEST(PathClosedForm, QuadLightMatchesLambertsPolygonFormula) {
   const std::vector<Vec3> light = {{3, 1, 0}, {1, 1, 1}, {-1, 1, 1}, {-1, 1, 0}};
   PathOptions options;
   for (const Vec3 p : {Vec3(0.5f, 0, 0.8f), Vec3(0.0f, 0, 0.2f), Vec3(2.5f, 0, -0.6f)}) {
-    const double exact = 0.5 / kPi * polygon_irradiance(p, Vec3(0, 1, 0), light, 3.0f);
+    const double exact = 0.5 / kPi * RT_GRADED(polygon_irradiance)(p, Vec3(0, 1, 0), light, 3.0f);
     // A short ray straight down onto the point, from just above it (below the light).
     const Ray ray{p + Vec3(0, 0.01f, 0), Vec3(0, -1, 0)};
     for (const PathIntegrator i : kPathIntegrators) {
@@ -109,45 +110,49 @@ TEST(RussianRoulette, SurvivalIsTheLargestThroughputComponentUpTo095) {
   // The header's rule, P = min(0.95, max component): a path carrying a colour survives as often as
   // its strongest channel asks (a rarer survival only adds noise, and the tests of the mean above
   // cannot see noise), and even a path carrying everything ends now and then (P < 1).
-  EXPECT_FLOAT_EQ(survival_probability(Color(0.5f, 0.2f, 0.1f)), 0.5f);
-  EXPECT_FLOAT_EQ(survival_probability(Color(0.01f, 0.3f, 0.02f)), 0.3f);
-  EXPECT_FLOAT_EQ(survival_probability(Color(0.0f, 0.0f, 0.9f)), 0.9f);
-  EXPECT_FLOAT_EQ(survival_probability(Color(1.0f)), 0.95f);
-  EXPECT_FLOAT_EQ(survival_probability(Color(3.0f, 0.1f, 0.1f)), 0.95f);
+  EXPECT_FLOAT_EQ(RT_GRADED(survival_probability)(Color(0.5f, 0.2f, 0.1f)), 0.5f);
+  EXPECT_FLOAT_EQ(RT_GRADED(survival_probability)(Color(0.01f, 0.3f, 0.02f)), 0.3f);
+  EXPECT_FLOAT_EQ(RT_GRADED(survival_probability)(Color(0.0f, 0.0f, 0.9f)), 0.9f);
+  EXPECT_FLOAT_EQ(RT_GRADED(survival_probability)(Color(1.0f)), 0.95f);
+  EXPECT_FLOAT_EQ(RT_GRADED(survival_probability)(Color(3.0f, 0.1f, 0.1f)), 0.95f);
 }
 
 // Veach's power heuristic (beta = 2) at the points where a slip shows: equal densities share
 // evenly, a delta strategy (infinite density) takes everything, a strategy that cannot make the
 // sample (density 0) takes nothing, and the two weights of one sample add up to 1.
 TEST(PowerHeuristic, WeighsBySquaredDensitiesAndTrustsADeltaFully) {
-  EXPECT_FLOAT_EQ(power_heuristic(2.0f, 2.0f), 0.5f);
-  EXPECT_FLOAT_EQ(power_heuristic(3.0f, 1.0f), 0.9f);
-  EXPECT_FLOAT_EQ(power_heuristic(1.0f, 3.0f), 0.1f);
-  EXPECT_EQ(power_heuristic(kInfinity, 5.0f), 1.0f);
-  EXPECT_EQ(power_heuristic(kInfinity, 0.0f), 1.0f);
-  EXPECT_EQ(power_heuristic(0.0f, 4.0f), 0.0f);
-  EXPECT_EQ(power_heuristic(4.0f, 0.0f), 1.0f);
-  EXPECT_EQ(power_heuristic(0.0f, 0.0f), 0.0f) << "no strategy could make it: weight 0, not 0/0";
+  EXPECT_FLOAT_EQ(RT_GRADED(power_heuristic)(2.0f, 2.0f), 0.5f);
+  EXPECT_FLOAT_EQ(RT_GRADED(power_heuristic)(3.0f, 1.0f), 0.9f);
+  EXPECT_FLOAT_EQ(RT_GRADED(power_heuristic)(1.0f, 3.0f), 0.1f);
+  EXPECT_EQ(RT_GRADED(power_heuristic)(kInfinity, 5.0f), 1.0f);
+  EXPECT_EQ(RT_GRADED(power_heuristic)(kInfinity, 0.0f), 1.0f);
+  EXPECT_EQ(RT_GRADED(power_heuristic)(0.0f, 4.0f), 0.0f);
+  EXPECT_EQ(RT_GRADED(power_heuristic)(4.0f, 0.0f), 1.0f);
+  EXPECT_EQ(RT_GRADED(power_heuristic)(0.0f, 0.0f), 0.0f) << "no strategy could make it: weight 0, not 0/0";
   for (const float a : {0.1f, 0.7f, 2.5f, 40.0f})
-    for (const float b : {0.05f, 1.0f, 9.0f}) EXPECT_NEAR(power_heuristic(a, b) + power_heuristic(b, a), 1.0f, 1e-6f);
+    for (const float b : {0.05f, 1.0f, 9.0f})
+      EXPECT_NEAR(RT_GRADED(power_heuristic)(a, b) + RT_GRADED(power_heuristic)(b, a), 1.0f, 1e-6f);
 }
 
 TEST(PathRobustness, NoNanOrInfFromGrazingAndCornerPaths) {
   const SceneDescription description = load_scene(testing::source_path("assets/scenes/cornell-box.json"));
   const LightingScene scene(description);
   PathOptions options;
-  Rng rng(5, 0, 0);
-  int bad = 0;
-  for (const PathIntegrator i : kPathIntegrators) {
-    options.integrator = i;
-    for (int k = 0; k < 20000; ++k) {
-      // From a box corner, along the walls and into the edges where two walls meet.
-      const Vec3 origin(1e-3f * rng.uniform(), 548.8f * rng.uniform(), 1e-3f * rng.uniform());
-      const Vec3 target(552.8f * rng.uniform(), 0.0f, 559.2f);
-      const Color l = path_radiance(scene, Ray{origin, glm::normalize(target - origin)}, options, rng);
-      bad += is_finite(l) && min_component(l) >= 0.0f ? 0 : 1;
+  const int bad = testing::subject([&] {
+    Rng rng(5, 0, 0);
+    int count = 0;
+    for (const PathIntegrator i : kPathIntegrators) {
+      options.integrator = i;
+      for (int k = 0; k < 20000; ++k) {
+        // From a box corner, along the walls and into the edges where two walls meet.
+        const Vec3 origin(1e-3f * rng.uniform(), 548.8f * rng.uniform(), 1e-3f * rng.uniform());
+        const Vec3 target(552.8f * rng.uniform(), 0.0f, 559.2f);
+        const Color l = path_radiance(scene, Ray{origin, glm::normalize(target - origin)}, options, rng);
+        count += is_finite(l) && min_component(l) >= 0.0f ? 0 : 1;
+      }
     }
-  }
+    return count;
+  });
   EXPECT_EQ(bad, 0);
 }
 

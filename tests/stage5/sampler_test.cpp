@@ -1,6 +1,7 @@
 // Stage 5: the scrambled Sobol sampler keeps the (0,2)-sequence property in every pair of
 // dimensions it hands out, and stays uniform.
 #include "05-path-tracing/sobol_sampler.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -18,7 +19,7 @@ TEST(SobolSampler, EveryElementaryBoxHoldsOnePoint) {
     for (int i = 0; i < n; ++i) {
       SobolSampler s(7, 123, std::uint64_t(i));
       Vec2 p(0.0f);
-      for (int d = 0; d <= pair; ++d) p = s.uniform2();
+      for (int d = 0; d <= pair; ++d) p = RT_GRADED(s.uniform2)();
       points.push_back(p);
     }
     for (int a = 0; a <= k; ++a) {
@@ -33,10 +34,10 @@ TEST(SobolSampler, EveryElementaryBoxHoldsOnePoint) {
 TEST(SobolSampler, PixelsAndPairsAreScrambledApart) {
   // Different pixels (and different pairs of one pixel) must not repeat the same points.
   SobolSampler a(1, 10, 5), b(1, 11, 5), c(2, 10, 5);
-  const Vec2 pa = a.uniform2(), pb = b.uniform2(), pc = c.uniform2();
+  const Vec2 pa = RT_GRADED(a.uniform2)(), pb = RT_GRADED(b.uniform2)(), pc = RT_GRADED(c.uniform2)();
   EXPECT_NE(pa, pb);
   EXPECT_NE(pa, pc);
-  EXPECT_NE(pa, a.uniform2());
+  EXPECT_NE(pa, RT_GRADED(a.uniform2)());
 }
 
 TEST(SobolSampler, ScrambleIsNestedNotAShift) {
@@ -46,12 +47,12 @@ TEST(SobolSampler, ScrambleIsNestedNotAShift) {
   // the third check, which asks that the flips of bit 30 differ between the two halves for most seeds.
   int seeds_where_halves_differ = 0;
   for (std::uint32_t seed = 1; seed <= 64; ++seed) {
-    const std::uint32_t top_flip = (SobolSampler::scramble(0u, seed) ^ 0u) >> 31;
+    const std::uint32_t top_flip = (RT_GRADED(SobolSampler::scramble)(0u, seed) ^ 0u) >> 31;
     std::uint32_t second_flip[2] = {2, 2};
     Rng rng(seed, 0, 0);
     for (int k = 0; k < 256; ++k) {
       const std::uint32_t x = rng.next_u32();
-      const std::uint32_t flips = SobolSampler::scramble(x, seed) ^ x;
+      const std::uint32_t flips = RT_GRADED(SobolSampler::scramble)(x, seed) ^ x;
       EXPECT_EQ(flips >> 31, top_flip);
       const std::uint32_t half = x >> 31, flip = (flips >> 30) & 1u;
       if (second_flip[half] == 2) second_flip[half] = flip;
@@ -78,13 +79,16 @@ TEST(SobolSampler, SecondDimensionTableMatchesTheGeneratorMatrix) {
 }
 
 TEST(SobolSampler, MeanOverManyPixelsIsOneHalf) {
-  double sum = 0.0;
   constexpr int kPixels = 4096, kSamples = 16;
-  for (int p = 0; p < kPixels; ++p)
-    for (int i = 0; i < kSamples; ++i) {
-      SobolSampler s(3, std::uint64_t(p), std::uint64_t(i));
-      sum += s.uniform() + s.uniform2().y;
-    }
+  const double sum = testing::subject([] {
+    double total = 0.0;
+    for (int p = 0; p < kPixels; ++p)
+      for (int i = 0; i < kSamples; ++i) {
+        SobolSampler s(3, std::uint64_t(p), std::uint64_t(i));
+        total += s.uniform() + s.uniform2().y;
+      }
+    return total;
+  });
   // Uniform numbers have variance 1/12; the scrambled points are at least as good as independent.
   const double n = 2.0 * kPixels * kSamples;
   EXPECT_NEAR(sum / n, 0.5, 4.0 * std::sqrt(1.0 / 12.0 / n));

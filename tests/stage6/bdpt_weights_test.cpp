@@ -9,6 +9,7 @@
 
 #include "stage6/loaded_scene.h"
 #include "support/glowing_room.h"
+#include "support/subject.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
@@ -57,40 +58,51 @@ TEST(AreaDensity, SolidAngleTimesCosineOverDistanceSquared) {
   from.hit.point = Vec3(0.0f);
   to.hit.point = Vec3(0.0f, 0.0f, 2.0f);
   to.hit.normal = glm::normalize(Vec3(0.0f, 1.0f, -1.0f));  // 45 degrees to the incoming direction
-  EXPECT_NEAR(to_area_density(0.8f, from, to), 0.8f * std::sqrt(0.5f) / 4.0f, 1e-6f);
+  EXPECT_NEAR(RT_GRADED(to_area_density)(0.8f, from, to), 0.8f * std::sqrt(0.5f) / 4.0f, 1e-6f);
   to.hit.normal = Vec3(0.0f, 0.0f, 1.0f);  // facing away: the density needs |cos|
-  EXPECT_NEAR(to_area_density(0.8f, from, to), 0.2f, 1e-6f);
+  EXPECT_NEAR(RT_GRADED(to_area_density)(0.8f, from, to), 0.2f, 1e-6f);
   to.hit.normal = Vec3(1.0f, 0.0f, 0.0f);  // edge-on: no area density
-  EXPECT_EQ(to_area_density(0.8f, from, to), 0.0f);
+  EXPECT_EQ(RT_GRADED(to_area_density)(0.8f, from, to), 0.0f);
   // The pinhole has no area: towards it the density is per unit solid angle over distance squared.
   to.kind = VertexKind::camera;
-  EXPECT_NEAR(to_area_density(0.8f, from, to), 0.2f, 1e-6f);
+  EXPECT_NEAR(RT_GRADED(to_area_density)(0.8f, from, to), 0.2f, 1e-6f);
 }
 
-// What the walk stored against what the geometry says, for every vertex whose neighbours exist.
-void expect_walk_densities(const LoadedScene& s, const std::vector<PathVertex>& path, const std::string& what) {
+// (what, stored, recomputed): what the walk stored against what the geometry says, for every
+// vertex whose neighbours exist.
+using Densities = std::vector<std::tuple<std::string, float, float>>;
+void walk_densities(const LoadedScene& s, const std::vector<PathVertex>& path, const std::string& what,
+                    Densities& out) {
   for (size_t i = 1; i < path.size(); ++i) {
     const PathVertex& before = path[i - 1];
     const float fwd = vertex_pdf(s.camera, before, i >= 2 ? &path[i - 2] : nullptr, path[i]);
-    expect_relative(path[i].pdf_fwd, fwd, 1e-3, what + " pdf_fwd of vertex " + std::to_string(i));
-    EXPECT_GT(path[i].pdf_fwd, 0.0f) << what << " vertex " << i;
+    out.emplace_back(what + " pdf_fwd of vertex " + std::to_string(i), path[i].pdf_fwd, fwd);
   }
   for (size_t i = 0; i + 2 < path.size(); ++i) {
     const float rev = vertex_pdf(s.camera, path[i + 1], &path[i + 2], path[i]);
-    expect_relative(path[i].pdf_rev, rev, 1e-3, what + " pdf_rev of vertex " + std::to_string(i));
+    out.emplace_back(what + " pdf_rev of vertex " + std::to_string(i), path[i].pdf_rev, rev);
   }
 }
 
 TEST(RandomWalk, StoresTheDensitiesOfBothDirections) {
-  int long_walks = 0;
-  for (const LoadedScene* s : {&cornell(), &caustic()})
-    for (std::uint64_t k = 0; k < 200; ++k) {
-      const Subpaths p = subpaths(*s, k);
-      expect_walk_densities(*s, p.camera, "camera subpath " + std::to_string(k));
-      expect_walk_densities(*s, p.light, "light subpath " + std::to_string(k));
-      long_walks += p.camera.size() >= 4 && p.light.size() >= 4;
-      if (HasFailure()) return;
+  const auto [densities, long_walks] = testing::subject([] {
+    Densities out;
+    int deep = 0;
+    for (const LoadedScene* s : {&cornell(), &caustic()})
+      for (std::uint64_t k = 0; k < 200; ++k) {
+        const Subpaths p = subpaths(*s, k);
+        walk_densities(*s, p.camera, "camera subpath " + std::to_string(k), out);
+        walk_densities(*s, p.light, "light subpath " + std::to_string(k), out);
+        deep += p.camera.size() >= 4 && p.light.size() >= 4;
+      }
+    return std::pair(out, deep);
+  });
+  for (const auto& [what, stored, recomputed] : densities) {
+    expect_relative(stored, recomputed, 1e-3, what);
+    if (what.find("pdf_fwd") != std::string::npos) {
+      EXPECT_GT(stored, 0.0f) << what;
     }
+  }
   EXPECT_GT(long_walks, 40);  // the check saw many deep vertices, not only first hits
 }
 
@@ -99,23 +111,30 @@ TEST(RandomWalk, ThroughputIsTheProductOfTheSamplingWeights) {
   // the camera subpath's beta at vertex i is the product of the albedos before it (and the light
   // subpath's the emitted flux over the choice times the same product).
   const LoadedScene& s = cornell();
-  size_t vertices = 0;
-  for (std::uint64_t k = 0; k < 50; ++k) {
-    const Subpaths p = subpaths(s, k);
-    vertices += p.camera.size() + p.light.size();
-    Color beta(1.0f);
-    for (size_t i = 1; i < p.camera.size(); ++i) {
-      EXPECT_NEAR(p.camera[i].beta.y, beta.y, 1e-4f * beta.y) << k << ", " << i;
-      beta *= s.scene.material(p.camera[i].hit).albedo;
+  // (what, beta.y the walk carried, the product of the albedos before it, tolerance).
+  const auto [betas, vertices] = testing::subject([&] {
+    std::vector<std::tuple<std::string, float, float, float>> out;
+    size_t count = 0;
+    for (std::uint64_t k = 0; k < 50; ++k) {
+      const Subpaths p = subpaths(s, k);
+      count += p.camera.size() + p.light.size();
+      Color beta(1.0f);
+      for (size_t i = 1; i < p.camera.size(); ++i) {
+        out.emplace_back(std::to_string(k) + ", " + std::to_string(i), p.camera[i].beta.y, beta.y, 1e-4f);
+        beta *= s.scene.material(p.camera[i].hit).albedo;
+      }
+      if (p.light.size() < 2) continue;
+      const AreaEmitter& e = s.scene.emitters().at(size_t(p.light[0].emitter));
+      Color flux = e.radiance * (kPi * e.area() / s.scene.emitter_distribution().pmf(p.light[0].emitter));
+      for (size_t i = 1; i < p.light.size(); ++i) {
+        out.emplace_back(std::to_string(k) + ", light " + std::to_string(i), p.light[i].beta.y, flux.y, 1e-3f);
+        flux *= s.scene.material(p.light[i].hit).albedo;
+      }
     }
-    if (p.light.size() < 2) continue;
-    const AreaEmitter& e = s.scene.emitters()[size_t(p.light[0].emitter)];
-    Color flux = e.radiance * (kPi * e.area() / s.scene.emitter_distribution().pmf(p.light[0].emitter));
-    for (size_t i = 1; i < p.light.size(); ++i) {
-      EXPECT_NEAR(p.light[i].beta.y, flux.y, 1e-3f * flux.y) << k << ", light " << i;
-      flux *= s.scene.material(p.light[i].hit).albedo;
-    }
-  }
+    return std::pair(out, std::uint64_t(count));
+  });
+  for (const auto& [what, carried, product, tolerance] : betas)
+    EXPECT_NEAR(carried, product, tolerance * product) << what;
   EXPECT_GT(vertices, 300u);  // 50 camera and 50 light subpaths of up to 6 vertices: most go deep
 }
 
@@ -134,22 +153,29 @@ TEST(RandomWalk, RouletteStartsAfterRouletteStartBounces) {
       WalkSettings walk;
       walk.roulette_start = start;
       walk.mode = light ? Transport::importance : Transport::radiance;
-      std::map<size_t, int> lengths;
-      for (std::uint64_t k = 0; k < 400; ++k) {
-        Rng rng(91, 0, k);
-        std::vector<PathVertex> path;
-        if (light) {
-          const std::optional<LightSubpathStart> s = start_light_subpath(room.scene, rng, walk.offset);
-          ASSERT_TRUE(s);
-          path.push_back(s->origin);
-          random_walk(room.scene, s->ray, s->beta, s->pdf_w, walk, rng, path);
-        } else {
-          const Ray ray = generate_camera_ray(room.camera, Vec2(rng.uniform() * 8.0f, rng.uniform() * 8.0f));
-          path.push_back(camera_vertex(room.camera));
-          random_walk(room.scene, ray, Color(1.0f), camera_direction_pdf(room.camera, ray.direction), walk, rng, path);
+      // (length, walks of that length), shortest first; nothing where a light subpath could not start.
+      const auto histogram = testing::subject([&]() -> std::optional<std::vector<std::pair<std::uint64_t, int>>> {
+        std::map<size_t, int> counted;
+        for (std::uint64_t k = 0; k < 400; ++k) {
+          Rng rng(91, 0, k);
+          std::vector<PathVertex> path;
+          if (light) {
+            const std::optional<LightSubpathStart> s = start_light_subpath(room.scene, rng, walk.offset);
+            if (!s) return std::nullopt;
+            path.push_back(s->origin);
+            random_walk(room.scene, s->ray, s->beta, s->pdf_w, walk, rng, path);
+          } else {
+            const Ray ray = generate_camera_ray(room.camera, Vec2(rng.uniform() * 8.0f, rng.uniform() * 8.0f));
+            path.push_back(camera_vertex(room.camera));
+            random_walk(room.scene, ray, Color(1.0f), camera_direction_pdf(room.camera, ray.direction), walk, rng,
+                        path);
+          }
+          ++counted[path.size()];
         }
-        ++lengths[path.size()];
-      }
+        return std::vector<std::pair<std::uint64_t, int>>(counted.begin(), counted.end());
+      });
+      ASSERT_TRUE(histogram && !histogram->empty());
+      const std::map<size_t, int> lengths(histogram->begin(), histogram->end());
       const std::string what = std::string(light ? "light" : "camera") + " subpaths, roulette_start " +
                                std::to_string(start);
       EXPECT_EQ(lengths.begin()->first, size_t(start + 1)) << what << ": the shortest walk";
@@ -166,8 +192,8 @@ TEST(ImportanceCorrection, GlassRefractionCarriesFluxUnsqueezed) {
   const BsdfSample refracted{Vec3(0.0f, 0.0f, -1.0f), Color(1.0f / 2.25f), 0.96f, true};
   const BsdfSample reflected{Vec3(0.0f, 0.0f, 1.0f), Color(1.0f), 0.04f, true};
   // Radiance into glass of index 1.5 is squeezed by (1 / 1.5)^2; flux is not: the factor undoes it.
-  EXPECT_NEAR(importance_correction(v, Vec3(0, 0, 1), Vec3(0, 0, -1), refracted), 2.25f, 1e-5f);
-  EXPECT_EQ(importance_correction(v, Vec3(0, 0, 1), Vec3(0, 0, 1), reflected), 1.0f);
+  EXPECT_NEAR(RT_GRADED(importance_correction)(v, Vec3(0, 0, 1), Vec3(0, 0, -1), refracted), 2.25f, 1e-5f);
+  EXPECT_EQ(RT_GRADED(importance_correction)(v, Vec3(0, 0, 1), Vec3(0, 0, 1), reflected), 1.0f);
   // A shading normal tilted from the geometric one: |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|).
   PathVertex tilted;
   tilted.hit.normal = Vec3(0.0f, 0.0f, 1.0f);
@@ -178,13 +204,15 @@ TEST(ImportanceCorrection, GlassRefractionCarriesFluxUnsqueezed) {
   const BsdfSample diffuse{Vec3(0, 0, 1), Color(0.5f), 0.3f, false};
   const float expected = std::abs(glm::dot(wo, tilted.hit.shading_normal)) * std::abs(wi.z) /
                          (std::abs(wo.z) * std::abs(glm::dot(wi, tilted.hit.shading_normal)));
-  EXPECT_NEAR(importance_correction(tilted, wo, wi, diffuse), expected, 1e-5f);
+  EXPECT_NEAR(RT_GRADED(importance_correction)(tilted, wo, wi, diffuse), expected, 1e-5f);
   EXPECT_NE(expected, 1.0f);
   // Only the cosines' magnitudes enter (Veach's thesis, eq. 5.19), so the factor is the same
   // whichever way either direction points: a walk that hands it the incoming ray's direction in
   // place of the way back (a flipped sign) computes the same factor, and no image can tell.
-  EXPECT_EQ(importance_correction(tilted, -wo, wi, diffuse), importance_correction(tilted, wo, wi, diffuse));
-  EXPECT_EQ(importance_correction(tilted, wo, -wi, diffuse), importance_correction(tilted, wo, wi, diffuse));
+  EXPECT_EQ(RT_GRADED(importance_correction)(tilted, -wo, wi, diffuse),
+            RT_GRADED(importance_correction)(tilted, wo, wi, diffuse));
+  EXPECT_EQ(RT_GRADED(importance_correction)(tilted, wo, -wi, diffuse),
+            RT_GRADED(importance_correction)(tilted, wo, wi, diffuse));
 }
 
 // A full path x_0 (camera) ... x_k (on a light), each vertex with its density from either side.
@@ -227,64 +255,84 @@ float reference_weight(const FullPath& f, int s) {
   }
   if (t >= 1) camera.back().delta = false;
   if (s >= 1) light.back().delta = false;
-  return strategy_weight(camera, light);
+  return RT_GRADED(strategy_weight)(camera, light);
 }
 
 TEST(MisWeights, EveryStrategyOfAPathSumsToOneAndTheRendererAgrees) {
-  int paths = 0, with_delta = 0;
-  for (const LoadedScene* s : {&cornell(), &caustic()})
-    for (std::uint64_t k = 0; k < 300; ++k) {
-      const Subpaths p = subpaths(*s, k);
-      if (p.light.empty()) continue;
-      for (int t = 1; t <= int(p.camera.size()); ++t)
-        for (int sl = 0; sl <= int(p.light.size()); ++sl) {
-          if (sl + t < 2) continue;
-          const PathVertex* sampled = sl == 1 ? &p.light[0] : nullptr;
-          const StrategySample r = connect_strategy(s->scene, s->camera, p.camera, p.light, sl, t, sampled, {});
-          if (r.value == Color(0.0f)) continue;  // no path: nothing to weigh
-          const FullPath f = join(*s, p, sl, t, sampled);
-          double sum = 0.0;
-          for (int other = 0; other <= int(f.x.size()); ++other)
-            if (strategy_exists(f, other)) sum += reference_weight(f, other);
-          const std::string what = "path " + std::to_string(k) + ", s = " + std::to_string(sl) + ", t = " + std::to_string(t);
-          EXPECT_NEAR(sum, 1.0, 1e-4) << what;
-          // The renderer reads the densities its walks stored, computed from the sampled directions;
-          // the reference recomputes them from the rounded vertex positions. Each pair agrees within
-          // 1e-3 (RandomWalk.StoresTheDensitiesOfBothDirections) and a weight is a ratio of products
-          // of up to s + t of them on each side.
-          const float renderer = mis_weight(s->scene, s->camera, p.camera, p.light, sl, t, sampled);
-          EXPECT_NEAR(renderer, reference_weight(f, sl), 2e-3f * float(sl + t) * std::max(renderer, 1e-3f)) << what;
-          ++paths;
-          for (const PathVertex* v : f.x) with_delta += v->delta;
-          if (HasFailure()) return;
-        }
-    }
-  EXPECT_GT(paths, 1000);
+  // Per connected path: (what, the sum of the reference weights of its strategies, the renderer's
+  // weight, the reference weight of its own strategy, s + t).
+  using Weights = std::vector<std::tuple<std::string, double, float, float, int>>;
+  const auto [weights, with_delta] = testing::subject([] {
+    Weights out;
+    int deltas = 0;
+    for (const LoadedScene* s : {&cornell(), &caustic()})
+      for (std::uint64_t k = 0; k < 300; ++k) {
+        const Subpaths p = subpaths(*s, k);
+        if (p.light.empty()) continue;
+        for (int t = 1; t <= int(p.camera.size()); ++t)
+          for (int sl = 0; sl <= int(p.light.size()); ++sl) {
+            if (sl + t < 2) continue;
+            const PathVertex* sampled = sl == 1 ? &p.light[0] : nullptr;
+            const StrategySample r = connect_strategy(s->scene, s->camera, p.camera, p.light, sl, t, sampled, {});
+            if (r.value == Color(0.0f)) continue;  // no path: nothing to weigh
+            const FullPath f = join(*s, p, sl, t, sampled);
+            double sum = 0.0;
+            for (int other = 0; other <= int(f.x.size()); ++other)
+              if (strategy_exists(f, other)) sum += reference_weight(f, other);
+            out.emplace_back("path " + std::to_string(k) + ", s = " + std::to_string(sl) + ", t = " + std::to_string(t),
+                             sum, mis_weight(s->scene, s->camera, p.camera, p.light, sl, t, sampled),
+                             reference_weight(f, sl), sl + t);
+            for (const PathVertex* v : f.x) deltas += v->delta;
+          }
+      }
+    return std::pair(out, deltas);
+  });
+  for (const auto& [what, sum, renderer, reference, vertices] : weights) {
+    EXPECT_NEAR(sum, 1.0, 1e-4) << what;
+    // The renderer reads the densities its walks stored, computed from the sampled directions;
+    // the reference recomputes them from the rounded vertex positions. Each pair agrees within
+    // 1e-3 (RandomWalk.StoresTheDensitiesOfBothDirections) and a weight is a ratio of products
+    // of up to s + t of them on each side.
+    EXPECT_NEAR(renderer, reference, 2e-3f * float(vertices) * std::max(renderer, 1e-3f)) << what;
+  }
+  EXPECT_GT(weights.size(), 1000u);
   EXPECT_GT(with_delta, 50);  // glass vertices took part
 }
 
 TEST(MisWeights, ThePowerHeuristicsClosedFormOnDiffusePaths) {
   // Without delta vertices every strategy exists and p_s is the plain product of densities.
   const LoadedScene& s = cornell();
-  int checked = 0;
-  for (std::uint64_t k = 0; k < 200; ++k) {
-    const Subpaths p = subpaths(s, k, 4);
-    if (p.camera.size() < 3 || p.light.size() < 2) continue;
-    if (connect_strategy(s.scene, s.camera, p.camera, p.light, 2, 3, nullptr, {}).value == Color(0.0f)) continue;
-    const FullPath f = join(s, p, 2, 3, nullptr);  // 5 vertices: strategies s = 0 ... 4
+  // Per path k checked: the five strategies' weights and their densities from either side.
+  const auto paths = testing::subject([&] {
+    std::vector<std::tuple<std::uint64_t, std::vector<float>, std::vector<double>>> out;
+    for (std::uint64_t k = 0; k < 200; ++k) {
+      const Subpaths p = subpaths(s, k, 4);
+      if (p.camera.size() < 3 || p.light.size() < 2) continue;
+      if (connect_strategy(s.scene, s.camera, p.camera, p.light, 2, 3, nullptr, {}).value == Color(0.0f)) continue;
+      const FullPath f = join(s, p, 2, 3, nullptr);  // 5 vertices: strategies s = 0 ... 4
+      std::vector<float> weights;
+      for (int sl = 0; sl <= 4; ++sl) weights.push_back(reference_weight(f, sl));
+      std::vector<double> sides(f.from_camera);
+      sides.insert(sides.end(), f.from_light.begin(), f.from_light.end());
+      out.emplace_back(k, weights, sides);
+    }
+    return out;
+  });
+  for (const auto& [k, weights, sides] : paths) {
+    ASSERT_EQ(weights.size(), 5u);
+    ASSERT_EQ(sides.size(), 10u);
     std::vector<double> density;
     for (int sl = 0; sl <= 4; ++sl) {
       double d = 1.0;
-      for (int i = 0; i < 5; ++i) d *= i < 5 - sl ? f.from_camera[size_t(i)] : f.from_light[size_t(i)];
+      for (int i = 0; i < 5; ++i) d *= i < 5 - sl ? sides[size_t(i)] : sides[size_t(5 + i)];
       density.push_back(d);
     }
     double sum2 = 0.0;
     for (const double d : density) sum2 += d * d;
     for (int sl = 0; sl <= 4; ++sl)
-      EXPECT_NEAR(reference_weight(f, sl), density[size_t(sl)] * density[size_t(sl)] / sum2, 1e-4) << k << ", " << sl;
-    ++checked;
+      EXPECT_NEAR(weights[size_t(sl)], density[size_t(sl)] * density[size_t(sl)] / sum2, 1e-4) << k << ", " << sl;
   }
-  EXPECT_GT(checked, 20);
+  EXPECT_GT(paths.size(), 20u);
 }
 
 TEST(MisWeights, ByHandOnAThreeVertexPath) {
@@ -294,15 +342,21 @@ TEST(MisWeights, ByHandOnAThreeVertexPath) {
   const double p0 = a1 * b2, p1 = a1 * c2, p2 = c1 * c2, sum = p0 * p0 + p1 * p1 + p2 * p2;
   const VertexDensity z0{1.0f, 0.0f, false}, z1_t2{a1, c1, false};
   // s = 1, t = 2: z_1 (fwd a1, rev c1); y_0 (fwd c2, rev b2).
-  EXPECT_NEAR(strategy_weight(std::vector{z0, z1_t2}, std::vector{VertexDensity{c2, b2, false}}), p1 * p1 / sum, 1e-6);
+  EXPECT_NEAR(RT_GRADED(strategy_weight)(std::vector{z0, z1_t2}, std::vector{VertexDensity{c2, b2, false}}),
+              p1 * p1 / sum, 1e-6);
   // s = 0, t = 3: y_0 is the camera's third vertex (fwd b2, rev c2).
-  EXPECT_NEAR(strategy_weight(std::vector{z0, z1_t2, VertexDensity{b2, c2, false}}, {}), p0 * p0 / sum, 1e-6);
+  EXPECT_NEAR(
+      RT_GRADED(strategy_weight)(std::vector{z0, z1_t2, VertexDensity{b2, c2, false}}, std::vector<VertexDensity>{}),
+      p0 * p0 / sum, 1e-6);
   // s = 2, t = 1: z_1 on the light side (fwd c1, rev a1).
-  EXPECT_NEAR(strategy_weight(std::vector{z0}, std::vector{VertexDensity{c2, b2, false}, VertexDensity{c1, a1, false}}),
+  EXPECT_NEAR(RT_GRADED(strategy_weight)(std::vector{z0},
+                                         std::vector{VertexDensity{c2, b2, false}, VertexDensity{c1, a1, false}}),
               p2 * p2 / sum, 1e-6);
   // A delta z_1 leaves only the strategy that never connects at it: s = 0 takes all.
   const VertexDensity z1_delta{0.0f, 0.0f, true};
-  EXPECT_NEAR(strategy_weight(std::vector{z0, z1_delta, VertexDensity{b2, c2, false}}, {}), 1.0, 1e-6);
+  EXPECT_NEAR(
+      RT_GRADED(strategy_weight)(std::vector{z0, z1_delta, VertexDensity{b2, c2, false}}, std::vector<VertexDensity>{}),
+      1.0, 1e-6);
 }
 
 }  // namespace

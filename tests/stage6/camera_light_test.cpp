@@ -3,9 +3,11 @@
 #include "01-ray-casting/camera_rays.h"
 #include "06-light-transport/camera_importance.h"
 #include "06-light-transport/light_emission.h"
+#include "stage6/records.h"
 #include "common/random.h"
 
 #include "support/chi_square.h"
+#include "support/subject.h"
 
 #include <gtest/gtest.h>
 
@@ -25,8 +27,8 @@ TEST(ProjectToFilm, InvertsTheCameraRay) {
   Rng rng(3, 0, 0);
   for (int k = 0; k < 1000; ++k) {
     const Vec2 film(rng.uniform() * 200.0f, rng.uniform() * 100.0f);
-    const Ray ray = generate_camera_ray(camera, film);
-    const std::optional<Vec2> back = project_to_film(camera, ray.at(0.5f + 20.0f * rng.uniform()));
+    const Ray ray = RT_GRADED(generate_camera_ray)(camera, film);
+    const std::optional<Vec2> back = RT_GRADED(project_to_film)(camera, ray.at(0.5f + 20.0f * rng.uniform()));
     ASSERT_TRUE(back) << film.x << ", " << film.y;
     EXPECT_NEAR(back->x, film.x, 2e-3f);
     EXPECT_NEAR(back->y, film.y, 2e-3f);
@@ -35,16 +37,16 @@ TEST(ProjectToFilm, InvertsTheCameraRay) {
 
 TEST(ProjectToFilm, NothingBehindTheCameraOrOffTheFilm) {
   const Camera camera = test_camera();
-  EXPECT_FALSE(project_to_film(camera, camera.position - camera.forward));
-  EXPECT_FALSE(project_to_film(camera, camera.position));  // at the pinhole itself
+  EXPECT_FALSE(RT_GRADED(project_to_film)(camera, camera.position - camera.forward));
+  EXPECT_FALSE(RT_GRADED(project_to_film)(camera, camera.position));  // at the pinhole itself
   // Just outside each edge of the film, and just inside.
-  const auto at = [&](float x, float y) { return generate_camera_ray(camera, Vec2(x, y)).at(5.0f); };
-  EXPECT_FALSE(project_to_film(camera, at(-0.01f, 50.0f)));
-  EXPECT_FALSE(project_to_film(camera, at(200.01f, 50.0f)));
-  EXPECT_FALSE(project_to_film(camera, at(100.0f, -0.01f)));
-  EXPECT_FALSE(project_to_film(camera, at(100.0f, 100.01f)));
-  EXPECT_TRUE(project_to_film(camera, at(0.01f, 0.01f)));
-  EXPECT_TRUE(project_to_film(camera, at(199.99f, 99.99f)));
+  const auto at = [&](float x, float y) { return RT_GRADED(generate_camera_ray)(camera, Vec2(x, y)).at(5.0f); };
+  EXPECT_FALSE(RT_GRADED(project_to_film)(camera, at(-0.01f, 50.0f)));
+  EXPECT_FALSE(RT_GRADED(project_to_film)(camera, at(200.01f, 50.0f)));
+  EXPECT_FALSE(RT_GRADED(project_to_film)(camera, at(100.0f, -0.01f)));
+  EXPECT_FALSE(RT_GRADED(project_to_film)(camera, at(100.0f, 100.01f)));
+  EXPECT_TRUE(RT_GRADED(project_to_film)(camera, at(0.01f, 0.01f)));
+  EXPECT_TRUE(RT_GRADED(project_to_film)(camera, at(199.99f, 99.99f)));
 }
 
 TEST(ProjectToFilm, TheFilmsFarEdgeBelongsToNoPixel) {
@@ -55,13 +57,14 @@ TEST(ProjectToFilm, TheFilmsFarEdgeBelongsToNoPixel) {
   spec.vfov_degrees = 90.0f;
   const Camera camera(spec, 2, 2);
   ASSERT_NEAR(camera.tan_half_vfov, 1.0f, 1e-6f);
-  EXPECT_TRUE(project_to_film(camera, Vec3(0.0f, 0.0f, 1.0f)));
-  const std::optional<Vec2> corner = project_to_film(camera, Vec3(0.999f, 0.999f, 1.0f));  // +x is on the left
+  EXPECT_TRUE(RT_GRADED(project_to_film)(camera, Vec3(0.0f, 0.0f, 1.0f)));
+  const std::optional<Vec2> corner =
+      RT_GRADED(project_to_film)(camera, Vec3(0.999f, 0.999f, 1.0f));  // +x is on the left
   ASSERT_TRUE(corner);
   EXPECT_LT(corner->x, 0.01f);
   EXPECT_LT(corner->y, 0.01f);
-  EXPECT_FALSE(project_to_film(camera, Vec3(-1.0f, 0.0f, 1.0f)));  // film x = 2 = width: off the film
-  EXPECT_FALSE(project_to_film(camera, Vec3(0.0f, -1.0f, 1.0f)));  // film y = 2 = height
+  EXPECT_FALSE(RT_GRADED(project_to_film)(camera, Vec3(-1.0f, 0.0f, 1.0f)));  // film x = 2 = width: off the film
+  EXPECT_FALSE(RT_GRADED(project_to_film)(camera, Vec3(0.0f, -1.0f, 1.0f)));  // film y = 2 = height
 }
 
 // The other edge is the film's: film x or y exactly 0 is pixel 0 ("x > 0" survived every test
@@ -72,10 +75,11 @@ TEST(ProjectToFilm, TheFilmsNearEdgeBelongsToTheFirstPixel) {
   const Camera camera(spec, 3, 2);
   ASSERT_EQ(camera.right, Vec3(-1.0f, 0.0f, 0.0f));  // looking down +z, +x on the left
   ASSERT_EQ(camera.up, Vec3(0.0f, 1.0f, 0.0f));
-  const std::optional<Vec2> left = project_to_film(camera, Vec3(camera.aspect * camera.tan_half_vfov, 0.0f, 1.0f));
+  const std::optional<Vec2> left =
+      RT_GRADED(project_to_film)(camera, Vec3(camera.aspect * camera.tan_half_vfov, 0.0f, 1.0f));
   ASSERT_TRUE(left) << "film x = 0 is on the film";
   EXPECT_EQ(left->x, 0.0f);
-  const std::optional<Vec2> top = project_to_film(camera, Vec3(0.0f, camera.tan_half_vfov, 1.0f));
+  const std::optional<Vec2> top = RT_GRADED(project_to_film)(camera, Vec3(0.0f, camera.tan_half_vfov, 1.0f));
   ASSERT_TRUE(top) << "film y = 0 is on the film";
   EXPECT_EQ(top->y, 0.0f);
 }
@@ -92,8 +96,8 @@ TEST(CameraImportance, IntegratesToOneOverTheFilm) {
     const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
     const Vec3 w(r * std::cos(phi), r * std::sin(phi), z);
     const float cos_theta = glm::dot(w, camera.forward);
-    importance += camera_importance(camera, w) * std::max(0.0f, cos_theta) * 4.0 * kPi;
-    density += camera_direction_pdf(camera, w) * 4.0 * kPi;
+    importance += RT_GRADED(camera_importance)(camera, w) * std::max(0.0f, cos_theta) * 4.0 * kPi;
+    density += RT_GRADED(camera_direction_pdf)(camera, w) * 4.0 * kPi;
   }
   EXPECT_NEAR(importance / n, 1.0, 0.02);
   EXPECT_NEAR(density / n, 1.0, 0.02);
@@ -101,15 +105,16 @@ TEST(CameraImportance, IntegratesToOneOverTheFilm) {
 
 TEST(CameraImportance, ClosedFormOnTheAxisAndOffIt) {
   const Camera camera = test_camera();
-  const float area = film_area(camera);
+  const float area = RT_GRADED(film_area)(camera);
   EXPECT_NEAR(area, 4.0f * camera.tan_half_vfov * camera.tan_half_vfov * 2.0f, 1e-5f);
-  EXPECT_NEAR(camera_importance(camera, camera.forward), 1.0f / area, 1e-6f);
-  const Ray corner = generate_camera_ray(camera, Vec2(150.0f, 20.0f));
+  EXPECT_NEAR(RT_GRADED(camera_importance)(camera, camera.forward), 1.0f / area, 1e-6f);
+  const Ray corner = RT_GRADED(generate_camera_ray)(camera, Vec2(150.0f, 20.0f));
   const float c = glm::dot(corner.direction, camera.forward);
-  EXPECT_NEAR(camera_importance(camera, corner.direction), 1.0f / (area * c * c * c * c), 1e-5f);
-  EXPECT_NEAR(camera_direction_pdf(camera, corner.direction), 1.0f / (area * c * c * c), 1e-5f);
-  EXPECT_EQ(camera_importance(camera, -camera.forward), 0.0f);
-  EXPECT_EQ(camera_importance(camera, glm::normalize(camera.forward + 5.0f * camera.up)), 0.0f);  // above the film
+  EXPECT_NEAR(RT_GRADED(camera_importance)(camera, corner.direction), 1.0f / (area * c * c * c * c), 1e-5f);
+  EXPECT_NEAR(RT_GRADED(camera_direction_pdf)(camera, corner.direction), 1.0f / (area * c * c * c), 1e-5f);
+  EXPECT_EQ(RT_GRADED(camera_importance)(camera, -camera.forward), 0.0f);
+  EXPECT_EQ(RT_GRADED(camera_importance)(camera, glm::normalize(camera.forward + 5.0f * camera.up)),
+            0.0f);  // above the film
 }
 
 // Two quad lights of different power and a disk: which emitter, where on it, which direction.
@@ -134,7 +139,8 @@ TEST(EmissionSampling, EmittersByPowerPointsUniformDirectionsByCosine) {
   const int n = 200000;
   Rng rng(11, 0, 0);
   for (int k = 0; k < n; ++k) {
-    const std::optional<EmissionSample> s = sample_emission(scene, rng.uniform(), rng.uniform2(), rng.uniform2());
+    const std::optional<EmissionSample> s =
+        RT_GRADED(sample_emission)(scene, rng.uniform(), rng.uniform2(), rng.uniform2());
     ASSERT_TRUE(s);
     const int i = s->origin.emitter;
     chosen[size_t(i)] += 1.0;
@@ -171,7 +177,8 @@ TEST(EmissionSampling, EachSampleCarriesTheFluxOverTheChoice) {
   const int n = 20000;
   Rng rng(12, 0, 0);
   for (int k = 0; k < n; ++k) {
-    const std::optional<EmissionSample> s = sample_emission(scene, rng.uniform(), rng.uniform2(), rng.uniform2());
+    const std::optional<EmissionSample> s =
+        RT_GRADED(sample_emission)(scene, rng.uniform(), rng.uniform2(), rng.uniform2());
     ASSERT_TRUE(s);
     const float cos_theta = glm::dot(s->direction, s->origin.hit.normal);
     const double beta = double(s->radiance.x) * cos_theta / (double(s->pdf_position) * s->pdf_direction);
@@ -188,7 +195,7 @@ TEST(EmissionSampling, NothingWithoutAnEmitter) {
     "materials": {"grey": {"albedo": [0.5, 0.5, 0.5]}},
     "shapes": [{"type": "sphere", "material": "grey", "center": [0, 0, 0], "radius": 1}]})",
                                         "dark.json"));
-  EXPECT_FALSE(sample_emission(scene, 0.5f, Vec2(0.5f), Vec2(0.5f)));
+  EXPECT_FALSE(RT_GRADED(sample_emission)(scene, 0.5f, Vec2(0.5f), Vec2(0.5f)));
 }
 
 }  // namespace

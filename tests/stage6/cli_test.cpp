@@ -6,6 +6,7 @@
 
 #include "reliability/child_process.h"
 #include "support/glowing_room.h"
+#include "support/subject.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
@@ -42,12 +43,13 @@ TEST(Stage6Cli, EveryMethodRendersTheCornellBox) {
   ScratchDir dir;
   for (const char* m : {"pt", "lt", "bdpt", "sppm"}) {
     const auto out = dir / (std::string(m) + ".pfm");
-    const auto r = run_command(stage6(kCornell + " --width 32 --height 32 --spp 8 --photons 20000 --method " + m +
-                                      " --out " + out.string()), dir);
+    const auto r = RT_GRADED(run_command)(
+        stage6(kCornell + " --width 32 --height 32 --spp 8 --photons 20000 --method " + m + " --out " + out.string()),
+        dir);
     ASSERT_EQ(r.exit_code, 0) << m << ": " << r.err;
     EXPECT_EQ(r.out.find("NaN"), std::string::npos) << r.out;  // no dropped samples to report
     // The back wall's middle: the reference is 0.375 there; 8 samples of any method find most of it.
-    const double back_wall = mean_over(read_pfm(out), PixelRect{18, 7, 23, 12}).x;
+    const double back_wall = mean_over(RT_GRADED(read_pfm)(out), PixelRect{18, 7, 23, 12}).x;
     EXPECT_GT(back_wall, 0.25) << m << "\n" << r.err;  // err names the tasks still missing
     EXPECT_LT(back_wall, 0.6) << m;
   }
@@ -58,12 +60,13 @@ TEST(Stage6Cli, OneStrategyRendersAlone) {
   // darker than all strategies together, which add the indirect light.
   ScratchDir dir;
   const std::string base = kCornell + " --width 24 --height 24 --spp 16 --method bdpt";
-  const auto one = run_command(stage6(base + " --strategy 1,2 --out " + (dir / "direct.pfm").string()), dir);
-  const auto every = run_command(stage6(base + " --out " + (dir / "all.pfm").string()), dir);
+  const auto one = RT_GRADED(run_command)(stage6(base + " --strategy 1,2 --out " + (dir / "direct.pfm").string()), dir);
+  const auto every = RT_GRADED(run_command)(stage6(base + " --out " + (dir / "all.pfm").string()), dir);
   ASSERT_EQ(one.exit_code, 0) << one.err;
   ASSERT_EQ(every.exit_code, 0) << every.err;
   const PixelRect all{0, 0, 24, 24};
-  const double direct = mean_over(read_pfm(dir / "direct.pfm"), all).x, total = mean_over(read_pfm(dir / "all.pfm"), all).x;
+  const double direct = mean_over(RT_GRADED(read_pfm)(dir / "direct.pfm"), all).x,
+               total = mean_over(RT_GRADED(read_pfm)(dir / "all.pfm"), all).x;
   EXPECT_GT(direct, 0.05) << one.err;  // err names the tasks still missing
   EXPECT_LT(direct, 0.85 * total) << every.err;
 }
@@ -72,9 +75,11 @@ TEST(Stage6Cli, SameImageForAnyThreadCount) {
   ScratchDir dir;
   for (const char* m : {"lt", "bdpt", "sppm"}) {
     const std::string base = kCornell + " --width 40 --height 30 --spp 4 --photons 5000 --method " + m;
-    ASSERT_EQ(run_command(stage6(base + " --threads 1 --out " + (dir / "one.pfm").string()), dir).exit_code, 0);
-    ASSERT_EQ(run_command(stage6(base + " --threads 2 --out " + (dir / "two.pfm").string()), dir).exit_code, 0);
-    EXPECT_TRUE(read_pfm(dir / "one.pfm") == read_pfm(dir / "two.pfm")) << m;
+    ASSERT_EQ(RT_GRADED(run_command)(stage6(base + " --threads 1 --out " + (dir / "one.pfm").string()), dir).exit_code,
+              0);
+    ASSERT_EQ(RT_GRADED(run_command)(stage6(base + " --threads 2 --out " + (dir / "two.pfm").string()), dir).exit_code,
+              0);
+    EXPECT_TRUE(RT_GRADED(read_pfm)(dir / "one.pfm") == RT_GRADED(read_pfm)(dir / "two.pfm")) << m;
   }
 }
 
@@ -82,7 +87,7 @@ TEST(Stage6Cli, WhatAMethodCannotRenderIsOneLine) {
   ScratchDir dir;
   const std::string out = " --width 8 --height 8 --out " + (dir / "o.png").string();
   // The Cornell box seen through a lens.
-  std::string lens = testing::read_text(source_path("assets/scenes/cornell-box.json"));
+  std::string lens = RT_GRADED(testing::read_text)(source_path("assets/scenes/cornell-box.json"));
   lens.replace(lens.find("\"vfov\""), 0, "\"aperture_radius\": 5, ");
   testing::write_text(dir / "lens.json", lens);
   const std::string lens_scene = "--scene " + (dir / "lens.json").string();
@@ -114,18 +119,22 @@ TEST(Stage6Cli, WhatAMethodCannotRenderIsOneLine) {
       {lens_scene + " --method lt", 1, "this camera has an aperture"},
   };
   for (const Case& c : cases) {
-    const auto r = run_command(stage6(c.flags + out), dir);
+    const auto r = RT_GRADED(run_command)(stage6(c.flags + out), dir);
     expect_one_line_error(r, c.code, c.says);
-    EXPECT_FALSE(std::filesystem::exists(dir / "o.png")) << c.flags;
+    EXPECT_FALSE(RT_GRADED(std::filesystem::exists)(dir / "o.png")) << c.flags;
   }
   // A batch file is refused too, before anything is rendered.
-  const auto batch = run_command(stage6(kCornell + " --method sppm --width 8 --height 8 --out " + (dir / "b.json").string()), dir);
+  const auto batch = RT_GRADED(run_command)(
+      stage6(kCornell + " --method sppm --width 8 --height 8 --out " + (dir / "b.json").string()), dir);
   expect_one_line_error(batch, 2, "cannot be rendered in batches or windows");
   // The path tracer takes what the others cannot: a point light, a lens.
   for (const std::string& scene : {scene_flag("cornell-box-point-light.json"), lens_scene})
-    EXPECT_EQ(run_command(stage6(scene + " --method pt --spp 4" + out), dir).exit_code, 0) << scene;
-  EXPECT_EQ(run_command(stage6(lens_scene + " --method sppm --spp 2 --photons 1000" + out), dir).exit_code, 0);
-  EXPECT_EQ(run_command(stage6(kCornell + " --method sppm --max-depth 2 --spp 1 --photons 1000" + out), dir).exit_code, 0);
+    EXPECT_EQ(RT_GRADED(run_command)(stage6(scene + " --method pt --spp 4" + out), dir).exit_code, 0) << scene;
+  EXPECT_EQ(RT_GRADED(run_command)(stage6(lens_scene + " --method sppm --spp 2 --photons 1000" + out), dir).exit_code,
+            0);
+  EXPECT_EQ(RT_GRADED(run_command)(stage6(kCornell + " --method sppm --max-depth 2 --spp 1 --photons 1000" + out), dir)
+                .exit_code,
+            0);
 }
 
 TEST(Stage6Cli, CtrlCKeepsWhatWasRendered) {
@@ -143,12 +152,12 @@ TEST(Stage6Cli, CtrlCKeepsWhatWasRendered) {
     ASSERT_TRUE(status) << m << ": still running two seconds after Ctrl-C";
     ASSERT_TRUE(WIFEXITED(*status));
     EXPECT_EQ(WEXITSTATUS(*status), 128 + SIGINT) << m;
-    const std::string said = testing::read_text(dir / "stdout.txt");
+    const std::string said = RT_GRADED(testing::read_text)(dir / "stdout.txt");
     EXPECT_NE(said.find("stage6: interrupted by"), std::string::npos) << said;
     // Every pixel the render reached shows the glowing room's radiance L = Le / (1 - albedo) = 2, up
     // to noise (a stop during the first pass leaves the pixels it had not reached black, as in
     // every stage; a splat that landed on one of those is dropped with it).
-    const Image image = read_pfm(out);
+    const Image image = RT_GRADED(read_pfm)(out);
     double sum = 0.0;
     int reached = 0;
     for (const Color& c : image.pixels())

@@ -20,15 +20,17 @@ const PixelRect kQuadrants[] = {{0, 0, 8, 8}, {8, 0, 16, 8}, {0, 8, 8, 16}, {8, 
 // spread includes the spread between pixels, so the error is conservative.
 template <class SampleFn>
 std::vector<RegionEstimate> quadrant_estimates(int spp, SampleFn&& sample) {
-  std::vector<RegionEstimate> out;
-  for (const PixelRect& region : kQuadrants) {
-    testing::SampleMean m;
-    for (int y = region.y0; y < region.y1; ++y)
-      for (int x = region.x0; x < region.x1; ++x)
-        for (int i = 0; i < spp; ++i) m.add(sample(x, y, i));
-    out.push_back(m.estimate());
-  }
-  return out;
+  return testing::subject([&] {
+    std::vector<RegionEstimate> out;
+    for (const PixelRect& region : kQuadrants) {
+      testing::SampleMean m;
+      for (int y = region.y0; y < region.y1; ++y)
+        for (int x = region.x0; x < region.x1; ++x)
+          for (int i = 0; i < spp; ++i) m.add(sample(x, y, i));
+      out.push_back(m.estimate());
+    }
+    return out;
+  });
 }
 
 // Path tracing's image of the paths of exactly k edges: stage 5's naive path tracer (BRDF

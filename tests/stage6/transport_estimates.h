@@ -6,6 +6,7 @@
 #include "06-light-transport/transport_render.h"
 #include "common/metrics.h"
 #include "support/sample_mean.h"
+#include "support/subject.h"
 
 #include <functional>
 #include <span>
@@ -39,8 +40,10 @@ inline Image render_method(const LightingScene& scene, const Camera& camera, con
   settings.height = camera.height;
   settings.spp = spp;
   settings.seed = seed;
-  SampleGuard guard;
-  return render_transport(scene, camera, settings, options, 2, guard).mean();
+  return testing::subject([&] {
+    SampleGuard guard;
+    return render_transport(scene, camera, settings, options, 2, guard).mean();
+  });
 }
 
 inline TransportOptions method(TransportMethod m) {

@@ -5,12 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace rt::testing {
 
 struct Estimate {
   double mean = 0.0, standard_error = 0.0;
 };
+inline auto record_fields(Estimate& e) { return std::tie(e.mean, e.standard_error); }  // support/record.h
 
 class SampleMean {
  public:
