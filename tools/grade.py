@@ -13,7 +13,8 @@ else, links and oversized files refused, comes from this tree: tools/grading/sub
 the result stage by stage in a sandbox (tools/grading/sandbox.py: bubblewrap, no network, its own
 PID namespace, a read-only view but for one scratch folder, limits on memory, CPU time, file size
 and processes), runs exactly the tests grading/tests.json lists, each in a sandbox of its own and
-passed only when GoogleTest's own report says so, checks the stage programs' renders against the
+passed only when its judge's report says so (the starter's test program replaying the values the
+submission's run recorded: tools/grading/build.py), checks the stage programs' renders against the
 references by statistics, measures the BVH's speed for the leaderboard, all within one time cap
 for the whole submission, and scores everything from grading/manifest.json. It writes, outside
 the sandbox and atomically, DIR/results.json (Gradescope's autograder format), DIR/report.md,
@@ -21,10 +22,12 @@ DIR/report.html and DIR/outcomes.json, and prints the total. Exit code 0 when gr
 the score), 1 when it could not (no such tree, no cmake, no sandbox).
 
 --prepare builds the instructor's tree once, every task as the starter's placeholder, into
-PREPARED (about three minutes on 2 cores); --prepared PREPARED then grades a submission by
+PREPARED (about three minutes on 2 cores), and keeps its test programs as the judges
+(PREPARED/judges); --prepared PREPARED then grades a submission by
 compiling only its files that differ from the starter's against that build and relinking (a class
-shares one prepared folder; each submission works on a copy). Without --prepared, a submission's
-whole tree is built in its work folder. report.md gives each step's time.
+shares one prepared folder; each submission works on a copy). Without --prepared, the starter is
+built in the work folder first (for its judges), and the submission's files then on top of it.
+report.md gives each step's time.
 
 --make-references renders the render checks' references with this tree's own release build
 (build/release by default) into grading/references/; --list-tests writes grading/tests.json from
@@ -183,6 +186,11 @@ def build_starter(folder, stages, options, box, deadline, log):
     return built
 
 
+def starter_fingerprint():
+    """The digest of the starter tree this tree makes (build.fingerprint), hidden tests included."""
+    return build.fingerprint(build.tree_files(submission.starter(ROOT, manifest.load(MANIFEST)), ROOT, hidden=True))
+
+
 def prepare(folder, options, box):
     """Builds the starter with every stage's tests and hidden tests into `folder` (src, build,
     judges): what --prepared grades against."""
@@ -199,7 +207,8 @@ def prepare(folder, options, box):
               file=sys.stderr)
         return 1
     seconds = time.monotonic() - start
-    files.write_atomically(folder / build.PREPARED_MARK, json.dumps({"seconds": round(seconds, 1)}) + "\n")
+    files.write_atomically(folder / build.PREPARED_MARK,
+                           json.dumps({"seconds": round(seconds, 1), "starter": starter_fingerprint()}) + "\n")
     print(f"grade: prepared {folder} in {seconds:.0f} s; grade with --prepared {folder}")
     return 0
 
@@ -278,6 +287,13 @@ def main():
             if not (args.prepared / build.PREPARED_MARK).is_file():
                 print(f"grade: --prepared {args.prepared}: not a finished prepared build (make it with --prepare)",
                       file=sys.stderr)
+                return 1
+            # Its judges replay the tests as they were when it was made: a test changed since would
+            # ask for values in another order than its subject records them, and fail.
+            made_from = json.loads((args.prepared / build.PREPARED_MARK).read_text()).get("starter")
+            if made_from != starter_fingerprint():
+                print(f"grade: --prepared {args.prepared} was made from another version of this tree (its tests, "
+                      "build files or starter changed since): make it again with --prepare", file=sys.stderr)
                 return 1
             if args.container_is_sandbox:  # no bind mounts: the build is graded where it was built
                 args.work = args.work or str(args.prepared)

@@ -232,6 +232,64 @@ def sandbox_or_skip(test):
     return box
 
 
+class AJudgedTest(unittest.TestCase):
+    """The two runs of a judged test (build.run_judged_test) with stand-in programs: the subject's
+    own report never counts, its record reaches the judge only as a regular file, and the judge's
+    report decides."""
+
+    SUBJECT = """#!/bin/sh
+name=${1#--gtest_filter=}
+case "$name" in
+  T.forges) printf '%s' '""" + case(name="T.forges") + """' > report.xml; : > "$RT_GRADING_RECORD" ;;
+  T.links) ln -s /etc/passwd "$RT_GRADING_RECORD" ;;
+  *) echo values > "$RT_GRADING_RECORD" ;;
+esac
+echo "TODO: the task is not done"
+"""
+    # Passes a test whose record is not empty; without one, ends as a replay that found no value.
+    JUDGE = """#!/bin/sh
+name=${1#--gtest_filter=}; suite=${name%%.*}; test=${name#*.}
+[ -s "$RT_GRADING_REPLAY" ] || { echo "grading: the submission's run ended before it gave the value at x.cpp:1:1" >&2; exit 86; }
+printf '<?xml version="1.0"?><testsuites tests="1"><testsuite name="%s"><testcase name="%s" classname="%s" status="run" result="completed"/></testsuite></testsuites>' "$suite" "$test" "$suite" > "${2#--gtest_output=xml:}"
+"""
+
+    def test_only_the_judges_report_decides(self):
+        box = sandbox_or_skip(self)
+        with Folder() as d:
+            work, judges = d / "work", d / "judges"
+            builder = build.Builder(box, work, 1, sandbox.Deadline(60), judges=judges, judged=["fake_tests"])
+            (builder.build / "bin").mkdir(parents=True)
+            (builder.source / "assets").mkdir(parents=True)
+            judges.mkdir()
+            for path, text in ((builder.build / "bin" / "fake_tests", self.SUBJECT), (judges / "fake_tests", self.JUDGE)):
+                path.write_text(text)
+                path.chmod(0o755)
+            logs = d / "logs"
+            results = builder.run_tests([{"name": n, "program": "fake_tests"} for n in ("T.honest", "T.forges", "T.links")],
+                                        logs, 30)
+            self.assertTrue(results["T.honest"].passed, results["T.honest"].output)
+            self.assertIn("TODO: the task is not done", results["T.honest"].output, "the subject's output is shown")
+            self.assertFalse(results["T.forges"].passed, "its own passing report does not count")
+            self.assertIn("ended before it gave the value at x.cpp:1:1", results["T.forges"].output)
+            self.assertFalse(results["T.links"].passed)
+            self.assertIn("record of its values was refused (a symbolic link)", results["T.links"].output)
+
+
+class APreparedBuild(unittest.TestCase):
+    def test_one_made_from_another_version_of_the_tree_is_refused(self):
+        # Its judges would replay tests that have changed since: every such test would fail.
+        with Folder() as d:
+            prepared = d / "prepared"
+            prepared.mkdir()
+            (prepared / build.PREPARED_MARK).write_text(json.dumps({"seconds": 1.0, "starter": "0" * 64}))
+            done = subprocess.run([GRADER_PYTHON, ROOT / "tools" / "grade.py", ROOT, "--prepared", prepared, "--out",
+                                   d / "out"], capture_output=True, text=True, timeout=120)
+            self.assertEqual(done.returncode, 1, done.stderr)
+            self.assertEqual(done.stderr.count("\n"), 1, done.stderr)
+            self.assertIn("was made from another version of this tree", done.stderr)
+            self.assertFalse((d / "out").exists())
+
+
 class WithoutASandbox(unittest.TestCase):
     def test_the_grader_says_so_in_one_line_and_stops(self):
         # A bwrap that cannot make namespaces, as in an unprivileged container.

@@ -34,6 +34,7 @@ what the subject writes, its own report included, never counts.
 """
 import concurrent.futures
 import dataclasses
+import hashlib
 import json
 import os
 import pathlib
@@ -70,13 +71,28 @@ def instructor_files(root, hidden):
     return found
 
 
+def tree_files(taken, root, hidden):
+    """Relative path -> bytes of the tree to build: the instructor's files, the taken ones in place."""
+    wanted = {name: path.read_bytes() for name, path in instructor_files(root, hidden).items()}
+    wanted.update(taken.files)
+    return wanted
+
+
+def fingerprint(wanted):
+    """A digest of a tree's files (tree_files): a prepared build's judges are this tree's only while
+    the starter tree it was made from has the same one."""
+    digest = hashlib.sha256()
+    for name in sorted(wanted):
+        digest.update(name.encode() + b"\0" + hashlib.sha256(wanted[name]).digest())
+    return digest.hexdigest()
+
+
 def prepare_tree(taken, root, source, hidden):
     """Makes `source` the instructor's files with the submission's taken files in their place."""
     source = pathlib.Path(source)
     source.mkdir(parents=True, exist_ok=True)
     source.chmod(0o755)
-    wanted = {name: path.read_bytes() for name, path in instructor_files(root, hidden).items()}
-    wanted.update(taken.files)
+    wanted = tree_files(taken, root, hidden)
     present = {p.relative_to(source).as_posix(): p for p in source.rglob("*") if p.is_file() or p.is_symlink()}
     for name in present.keys() - wanted.keys():
         present[name].unlink()

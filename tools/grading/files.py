@@ -62,15 +62,16 @@ def read_beneath(root, relative, limit):
             raise Refused("not a regular file")
         if info.st_size > limit:
             raise Refused(f"{info.st_size} bytes, more than the {limit} a file may have")
-        data = b""
-        while len(data) <= limit:
+        chunks, size = [], 0
+        while size <= limit:
             chunk = os.read(fd, 1 << 20)
             if not chunk:
                 break
-            data += chunk
-        if len(data) > limit:
+            chunks.append(chunk)
+            size += len(chunk)
+        if size > limit:
             raise Refused(f"more than the {limit} bytes a file may have")
-        return data
+        return b"".join(chunks)
     finally:
         os.close(fd)
 
