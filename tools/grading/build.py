@@ -246,9 +246,7 @@ def run_one_test(builder, test, slot, log, timeout):
         return TestResult(name, False, 0.0, f"not run: the time cap of {builder.deadline.cap:g} s was reached")
     if test["program"] in builder.judged:
         return run_judged_test(builder, test, slot, log, step)
-    files.remove_tree(slot)
-    slot.mkdir()
-    builder.own(slot)
+    fresh_folder(builder, slot)
     report = slot / "report.xml"
     read_only = [builder.bound(p) for p in dict.fromkeys([builder.source / "assets", program, *builder.programs()])]
     result = builder.sandbox.run([str(builder.seen_path(program)), f"--gtest_filter={name}",
@@ -260,6 +258,7 @@ def run_one_test(builder, test, slot, log, timeout):
 
 
 def fresh_folder(builder, path, judge=False):
+    """An empty folder at `path`, owned by the sandbox's user (or the judges')."""
     files.remove_tree(path)
     path.mkdir()
     builder.own(path, judge)
