@@ -142,22 +142,28 @@ TEST(Stage6Cli, CtrlCKeepsWhatWasRendered) {
     ScratchDir dir;
     testing::write_text(dir / "room.json", testing::kGlowingRoom);
     const auto out = dir / "partial.pfm";
-    testing::ChildProcess child({STAGE6_EXE, "--scene", (dir / "room.json").string(), "--width", "48", "--height", "48", "--spp",
-                        "1048576", "--photons", "2000", "--threads", "2", "--method", m, "--out", out.string()},
-                       dir / "stdout.txt", dir / "stderr.txt");
-    ASSERT_TRUE(child.started());
-    std::this_thread::sleep_for(1000ms);
-    child.signal(SIGINT);
-    const std::optional<int> status = child.wait_for(2000ms);
-    ASSERT_TRUE(status) << m << ": still running two seconds after Ctrl-C";
-    ASSERT_TRUE(WIFEXITED(*status));
-    EXPECT_EQ(WEXITSTATUS(*status), 128 + SIGINT) << m;
-    const std::string said = RT_GRADED(testing::read_text)(dir / "stdout.txt");
+    // The run as the test saw it: started, ended within two seconds of Ctrl-C, its exit code (-1
+    // when a signal ended it), what it printed and the image it wrote.
+    const auto [started, ended, exit_code, said, image] = testing::subject([&] {
+      testing::ChildProcess child({STAGE6_EXE, "--scene", (dir / "room.json").string(), "--width", "48", "--height", "48",
+                                   "--spp", "1048576", "--photons", "2000", "--threads", "2", "--method", m, "--out",
+                                   out.string()},
+                                  dir / "stdout.txt", dir / "stderr.txt");
+      if (!child.started()) return std::tuple(false, false, -1, std::string(), Image());
+      std::this_thread::sleep_for(1000ms);
+      child.signal(SIGINT);
+      const std::optional<int> status = child.wait_for(2000ms);
+      if (!status) return std::tuple(true, false, -1, std::string(), Image());
+      return std::tuple(true, true, WIFEXITED(*status) ? WEXITSTATUS(*status) : -1, testing::read_text(dir / "stdout.txt"),
+                        std::filesystem::exists(out) ? read_pfm(out) : Image());
+    });
+    ASSERT_TRUE(started);
+    ASSERT_TRUE(ended) << m << ": still running two seconds after Ctrl-C";
+    EXPECT_EQ(exit_code, 128 + SIGINT) << m;
     EXPECT_NE(said.find("stage6: interrupted by"), std::string::npos) << said;
     // Every pixel the render reached shows the glowing room's radiance L = Le / (1 - albedo) = 2, up
     // to noise (a stop during the first pass leaves the pixels it had not reached black, as in
     // every stage; a splat that landed on one of those is dropped with it).
-    const Image image = RT_GRADED(read_pfm)(out);
     double sum = 0.0;
     int reached = 0;
     for (const Color& c : image.pixels())
