@@ -23,7 +23,7 @@ struct Hit {
   Vec2 uv{0.0f};
   bool front_face = true;
   int material = -1;
-  int primitive = -1;  // index of the shape in its scene, for debug output and tests
+  int primitive = -1;  // index of the shape in its scene: how a hit finds its emitter (emitter_index)
   int triangle = -1;   // which triangle of a mesh shape, -1 for other shapes
 
   // The front-face rule, in one place: the ray hits the front (outward) side when it travels

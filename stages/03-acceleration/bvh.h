@@ -150,7 +150,8 @@ std::optional<std::pair<float, std::uint32_t>> bvh_closest_hit(
     const Bvh& bvh, const Ray& ray, Interval range, FunctionRef<std::optional<float>(std::uint32_t, Interval)> hit_primitive);
 
 // Task stage3.bvh.any_hit. The same walk for shadow rays, stopping at the first primitive hit in
-// range: no ordering, no shrinking, no record. `hits_primitive(index, range)` returns a bool.
+// range: no ordering, no shrinking, no record. `hits_primitive(slot, range)` says whether the primitive
+// in leaf slot `slot` (the primitive bvh.order[slot]) is hit within `range`.
 bool bvh_any_hit(const Bvh& bvh, const Ray& ray, Interval range, FunctionRef<bool(std::uint32_t, Interval)> hits_primitive);
 
 }  // namespace rt

@@ -18,7 +18,7 @@
 
 namespace rt {
 
-// The registration point of stages 4 and 5: the kinds of bounded primitive they render, in the
+// The registration point of stages 4 to 6: the kinds of bounded primitive they render, in the
 // order every aggregate lists them.
 using LightingPrimitives = PrimitiveSet<SphereKind, TriangleKind, DiskKind>;
 

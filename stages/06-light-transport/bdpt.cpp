@@ -124,22 +124,6 @@ StrategySample connect_strategy(const LightingScene& scene, const Camera& camera
   // END TASK
 }
 
-namespace {
-
-// The light vertex y_0 at a point on an emitter sampled with area density pdf_position (the choice
-// included): beta = Le / pdf_position, what every strategy multiplies by the light's side.
-PathVertex light_vertex(const EmitterPoint& point, Color radiance, float pdf_position) {
-  PathVertex v;
-  v.kind = VertexKind::light;
-  v.hit = point.hit;
-  v.emitter = point.emitter;
-  v.pdf_fwd = pdf_position;
-  v.beta = radiance / pdf_position;
-  return v;
-}
-
-}  // namespace
-
 std::optional<PathVertex> sample_light_vertex(const LightingScene& scene, float u_choice, Vec2 u) {
   if (scene.emitter_distribution().empty()) return std::nullopt;
   const int index = scene.emitter_distribution().sample(u_choice).index;
@@ -148,23 +132,6 @@ std::optional<PathVertex> sample_light_vertex(const LightingScene& scene, float 
   const float pdf_position = emission_position_pdf(scene, index);
   if (!(pdf_position > 0.0f)) return std::nullopt;
   return light_vertex(sample_emitter_point(emitter, index, u), emitter.radiance, pdf_position);
-}
-
-template <class Numbers>
-std::optional<LightSubpathStart> start_light_subpath(const LightingScene& scene, Numbers& rng,
-                                                     const OffsetPolicy& offset) {
-  const float u_choice = rng.uniform();
-  const Vec2 u_position = rng.uniform2();
-  const Vec2 u_direction = rng.uniform2();
-  const std::optional<EmissionSample> e = sample_emission(scene, u_choice, u_position, u_direction);
-  if (!e || !(e->pdf_position > 0.0f)) return std::nullopt;
-  LightSubpathStart start;
-  start.origin = light_vertex(e->origin, e->radiance, e->pdf_position);
-  start.ray = spawn_ray(e->origin.hit, e->direction, offset);
-  const float cos_theta = glm::dot(e->origin.hit.normal, e->direction);
-  start.beta = start.origin.beta * (cos_theta / e->pdf_direction);
-  start.pdf_w = e->pdf_direction;
-  return start;
 }
 
 template <class Numbers>
@@ -218,7 +185,6 @@ Color bdpt_sample(const LightingScene& scene, const Camera& camera, const Ray& c
   return radiance;
 }
 
-template std::optional<LightSubpathStart> start_light_subpath(const LightingScene&, Rng&, const OffsetPolicy&);
 template Color bdpt_sample(const LightingScene&, const Camera&, const Ray&, const BdptOptions&, Rng&,
                            std::vector<PathVertex>&, std::vector<PathVertex>&, std::vector<Splat>&);
 

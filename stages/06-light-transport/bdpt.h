@@ -14,6 +14,7 @@
 // Guibas 1995), which needs each vertex's density in both directions (path_vertex.h).
 #pragma once
 
+#include "06-light-transport/light_emission.h"
 #include "06-light-transport/path_vertex.h"
 
 #include <span>
@@ -65,17 +66,6 @@ StrategySample connect_strategy(const LightingScene& scene, const Camera& camera
 
 // A light vertex for strategy s = 1: a uniform point on an emitter chosen by power.
 std::optional<PathVertex> sample_light_vertex(const LightingScene& scene, float u_choice, Vec2 u);
-
-// The light vertex y_0 of an emission sample, and the start of its subpath.
-struct LightSubpathStart {
-  PathVertex origin;
-  Ray ray;
-  Color beta;   // after the emission: Le cos / (P_choice p_A p_w)
-  float pdf_w;  // of the emitted direction
-};
-template <class Numbers>
-std::optional<LightSubpathStart> start_light_subpath(const LightingScene& scene, Numbers& rng,
-                                                     const OffsetPolicy& offset);
 
 // One strategy alone, for teaching (stage6 --strategy s,t): every other is skipped, and it is not
 // weighted, so its image is that strategy's own unbiased estimate of the paths of length s + t - 1.

@@ -3,6 +3,7 @@
 #include "02-whitted/ray_offset.h"
 #include "04-radiometry/warp.h"
 #include "common/frame.h"
+#include "common/random.h"
 #include "common/task.h"
 
 namespace rt {
@@ -78,5 +79,34 @@ float emission_position_pdf(const LightingScene& scene, int index) {
 }
 
 float emission_direction_pdf(Vec3 front_normal, Vec3 w) { return std::max(0.0f, glm::dot(front_normal, w)) * kInvPi; }
+
+PathVertex light_vertex(const EmitterPoint& point, Color radiance, float pdf_position) {
+  PathVertex v;
+  v.kind = VertexKind::light;
+  v.hit = point.hit;
+  v.emitter = point.emitter;
+  v.pdf_fwd = pdf_position;
+  v.beta = radiance / pdf_position;
+  return v;
+}
+
+template <class Numbers>
+std::optional<LightSubpathStart> start_light_subpath(const LightingScene& scene, Numbers& rng,
+                                                     const OffsetPolicy& offset) {
+  const float u_choice = rng.uniform();
+  const Vec2 u_position = rng.uniform2();
+  const Vec2 u_direction = rng.uniform2();
+  const std::optional<EmissionSample> e = sample_emission(scene, u_choice, u_position, u_direction);
+  if (!e || !(e->pdf_position > 0.0f)) return std::nullopt;
+  LightSubpathStart start;
+  start.origin = light_vertex(e->origin, e->radiance, e->pdf_position);
+  start.ray = spawn_ray(e->origin.hit, e->direction, offset);
+  const float cos_theta = glm::dot(e->origin.hit.normal, e->direction);
+  start.beta = start.origin.beta * (cos_theta / e->pdf_direction);
+  start.pdf_w = e->pdf_direction;
+  return start;
+}
+
+template std::optional<LightSubpathStart> start_light_subpath(const LightingScene&, Rng&, const OffsetPolicy&);
 
 }  // namespace rt

@@ -9,7 +9,9 @@
 // the emitter's flux over the probability of choosing it (PBR 4th ed. section 12.2).
 #pragma once
 
+#include "02-whitted/ray_offset.h"
 #include "04-radiometry/lighting_scene.h"
+#include "06-light-transport/path_vertex.h"
 
 #include <optional>
 
@@ -44,5 +46,21 @@ float emission_position_pdf(const LightingScene& scene, int index);
 // The density of the emitted direction w at a point whose front normal is n: cos(theta) / pi in
 // front, 0 behind.
 float emission_direction_pdf(Vec3 front_normal, Vec3 w);
+
+// The light vertex y_0 at a point on an emitter sampled with area density pdf_position (the choice
+// included): beta = Le / pdf_position, what every strategy multiplies by the light's side.
+PathVertex light_vertex(const EmitterPoint& point, Color radiance, float pdf_position);
+
+// The light vertex y_0 of an emission sample, and the start of its subpath: where light tracing,
+// BDPT and photon mapping all begin a light subpath.
+struct LightSubpathStart {
+  PathVertex origin;
+  Ray ray;
+  Color beta;   // after the emission: Le cos / (P_choice p_A p_w)
+  float pdf_w;  // of the emitted direction
+};
+template <class Numbers>
+std::optional<LightSubpathStart> start_light_subpath(const LightingScene& scene, Numbers& rng,
+                                                     const OffsetPolicy& offset);
 
 }  // namespace rt

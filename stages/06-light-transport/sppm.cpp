@@ -2,7 +2,7 @@
 
 #include "01-ray-casting/camera_rays.h"
 #include "05-path-tracing/sobol_sampler.h"
-#include "06-light-transport/bdpt.h"
+#include "06-light-transport/light_emission.h"
 #include "06-light-transport/photon_grid.h"
 #include "common/interrupt.h"
 #include "common/parallel.h"
