@@ -1,5 +1,6 @@
 #include "common/parallel.h"
 
+#include <algorithm>
 #include <atomic>
 #include <exception>
 #include <mutex>
@@ -48,6 +49,17 @@ void parallel_for_tiles(int width, int height, int threads,
     body(PixelRect{tx * kTileSize, ty * kTileSize, std::min(width, (tx + 1) * kTileSize),
                    std::min(height, (ty + 1) * kTileSize)});
   });
+}
+
+void for_each_chunk(size_t count, int threads, const std::function<void(size_t, size_t)>& body) {
+  // Starting a thread costs tens of microseconds: a chunk of fewer indices is not worth one.
+  constexpr size_t kMinChunk = 1024;
+  const size_t chunks = std::max<size_t>(1, std::min(size_t(resolve_thread_count(threads)), count / kMinChunk));
+  std::vector<std::future<void>> others;
+  for (size_t c = 0; c + 1 < chunks; ++c)
+    others.push_back(start_on_thread([&body, begin = count * c / chunks, end = count * (c + 1) / chunks] { body(begin, end); }));
+  body(count * (chunks - 1) / chunks, count);
+  for (std::future<void>& other : others) other.get();
 }
 
 }  // namespace rt

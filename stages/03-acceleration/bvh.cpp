@@ -4,55 +4,14 @@
 #include "common/error.h"
 #include "common/parallel.h"
 
-#include <sys/mman.h>
-
 #include <algorithm>
 #include <bit>
 #include <cstdlib>
 #include <future>
 #include <new>
 #include <optional>
-#include <system_error>
 
 namespace rt {
-
-void* allocate_huge(size_t bytes) {
-  constexpr size_t kPage = CacheLineAllocator<char>::kHugePage;
-  const size_t rounded = (bytes + kPage - 1) / kPage * kPage;  // aligned_alloc wants a multiple
-  void* p = std::aligned_alloc(kPage, rounded);
-  if (!p) throw std::bad_alloc();
-#ifdef MADV_HUGEPAGE
-  // A hint: where transparent huge pages are "madvise" only (Debian's default), this is what asks
-  // for them. Refused or not, the memory is the same.
-  madvise(p, rounded, MADV_HUGEPAGE);
-#endif
-  return p;
-}
-
-namespace {
-
-// `task` on a thread of its own; where no thread is to be had, the future's get() runs it.
-template <class Task>
-auto start(Task task) -> std::future<decltype(task())> {
-  try {
-    return std::async(std::launch::async, task);
-  } catch (const std::system_error&) {
-    return std::async(std::launch::deferred, task);
-  }
-}
-
-}  // namespace
-
-void for_each_chunk(size_t count, int threads, const std::function<void(size_t, size_t)>& body) {
-  // Starting a thread costs tens of microseconds: a chunk of fewer indices is not worth one.
-  constexpr size_t kMinChunk = 1024;
-  const size_t chunks = std::max<size_t>(1, std::min(size_t(resolve_thread_count(threads)), count / kMinChunk));
-  std::vector<std::future<void>> others;
-  for (size_t c = 0; c + 1 < chunks; ++c)
-    others.push_back(start([&body, begin = count * c / chunks, end = count * (c + 1) / chunks] { body(begin, end); }));
-  body(count * (chunks - 1) / chunks, count);
-  for (std::future<void>& other : others) other.get();
-}
 
 float leaf_cost(int count, const BvhBuildOptions& options) {
   if (options.wide && options.triangle_packs && count <= BvhBuildOptions::kPackSize) return BvhBuildOptions::kPackCost;
@@ -165,7 +124,7 @@ class Builder {
       // level of spawning: 24 MB each at 10^6 triangles).
       Builder second(primitives_, options_, spawn_depth_);
       std::future<Nodes> second_nodes =
-          start([&] { return std::move(second).build_subtree(at, end, split->right, depth + 1); });
+          start_on_thread([&] { return std::move(second).build_subtree(at, end, split->right, depth + 1); });
       build_node(first, begin, at, split->left, depth + 1);
       append(first + 1, second_nodes.get());
       return;

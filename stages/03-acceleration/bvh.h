@@ -3,7 +3,9 @@
 #pragma once
 
 #include "03-acceleration/aabb.h"
+#include "common/cache_line_allocator.h"
 #include "common/function_ref.h"
+#include "common/parallel.h"
 
 #include <cstdint>
 #include <cstdlib>
@@ -87,41 +89,6 @@ struct BvhStats {
   size_t nodes = 0, leaves = 0, depth = 0, max_leaf_primitives = 0;
   double mean_leaf_primitives = 0.0;
   double sah_cost = 0.0;  // the tree's SAH cost with the constants above, per ray through the root
-};
-
-// Calls body(begin, end) for `threads` contiguous chunks of [0, count) at the same time, each on a
-// thread of its own (0: one per core; fewer where a chunk would hold under 1,024 indices; the
-// calling thread takes the last chunk). The chunks depend on the thread count, so what body makes
-// of an index must not.
-void for_each_chunk(size_t count, int threads, const std::function<void(size_t begin, size_t end)>& body);
-
-// Memory of `bytes` on 2 MiB boundaries, in huge pages where the system grants them; free() frees it.
-void* allocate_huge(size_t bytes);
-
-// Allocates on 64-byte boundaries (C++17 aligned new), so that each sibling pair of nodes, which
-// starts at an even index, is exactly one cache line. An array of 2 MiB or more (a large mesh's
-// nodes and packs) goes into huge pages instead: an incoherent ray on the 10^6-triangle mesh
-// touches nodes and packs all over 80 MB, and with 4 KiB pages nearly every one of those reads also
-// misses the TLB (the page table's cache). Measured in alternated runs of accel_scaling, the 4-wide
-// tree there traces in 4.4-4.9 instead of 8.7-10.6 us per ray (docs/stage3.md, ladder step 10).
-// Embree asks for huge pages on Linux by default too.
-template <class T>
-struct CacheLineAllocator {
-  using value_type = T;
-  static constexpr std::align_val_t kAlignment{64};
-  static constexpr size_t kHugePage = size_t(2) << 20;
-  CacheLineAllocator() = default;
-  template <class U>
-  CacheLineAllocator(const CacheLineAllocator<U>&) {}
-  T* allocate(size_t n) {
-    if (n * sizeof(T) >= kHugePage) return static_cast<T*>(allocate_huge(n * sizeof(T)));
-    return static_cast<T*>(::operator new(n * sizeof(T), kAlignment));
-  }
-  void deallocate(T* p, size_t n) {
-    if (n * sizeof(T) >= kHugePage) return std::free(p);
-    ::operator delete(p, kAlignment);
-  }
-  friend bool operator==(const CacheLineAllocator&, const CacheLineAllocator&) { return true; }
 };
 
 struct Bvh {
