@@ -40,7 +40,8 @@ SpherePrecision measure_sphere_precision(const FarSphereRays& setup, const std::
   SpherePrecision result;
   int wrong = 0;
   std::vector<double> errors;
-  for (const Ray& ray : setup.rays) {
+  for (size_t i = 0; i < setup.rays.size(); ++i) {
+    const Ray& ray = setup.rays[i];
     // Reference: the perpendicular-distance form in long double, f = o - c = (0, 0, -D).
     const LD dx = ray.direction.x, dy = ray.direction.y, dz = ray.direction.z;
     const LD a = dx * dx + dy * dy + dz * dz, b = -distance * dz;
@@ -49,7 +50,7 @@ SpherePrecision measure_sphere_precision(const FarSphereRays& setup, const std::
     if (std::abs(std::sqrt(rho2) - r) < band) continue;
     ++result.rays_counted;
     const bool reference_hit = rho2 < r * r;
-    const std::optional<float> t = answers.at(size_t(&ray - setup.rays.data()));
+    const std::optional<float> t = answers.at(i);
     if (t.has_value() != reference_hit) {
       ++wrong;
       continue;
