@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
   csv << "integrator,sampler,spp,seconds,rmse\n";
   const Config configs[] = {{PathIntegrator::naive, SamplerKind::sobol},
                             {PathIntegrator::russian_roulette, SamplerKind::sobol},
-                            {PathIntegrator::light_sampling, SamplerKind::sobol},
+                            {PathIntegrator::next_event_estimation, SamplerKind::sobol},
                             {PathIntegrator::mis, SamplerKind::sobol},
                             {PathIntegrator::mis, SamplerKind::independent}};
   std::printf("\nTime to reach an RMSE against the reference (all threads):\n");

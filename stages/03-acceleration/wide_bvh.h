@@ -68,7 +68,7 @@ WideBvh collapse_to_wide(const Bvh& bvh);
 
 // The contracts of bvh_closest_hit and bvh_any_hit (bvh.h), over the wide tree, a leaf at a time:
 // the traversal hands each leaf it enters to the caller's test, as the node holds it (child and
-// count; an aggregate may store a leaf its own way, as BvhAggregate stores triangles in packs),
+// count; an aggregate may store a leaf its own way, as PackedWideBvh stores triangles in packs),
 //   hit_leaf(child, count, range) -> std::optional<float>: the nearest t strictly inside `range`
 //                                    among the leaf's primitives (the caller notes which);
 //   hits_leaf(child, count, range) -> bool: whether any of them is hit inside `range`.

@@ -70,14 +70,14 @@ struct DirectLightSample {
 // call through the Sampler interface per number; docs/stage5.md, the speed ladder).
 DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingPoint& at, float u_choice, Vec2 u,
                                       const OffsetPolicy& offset);
-// The same with its numbers drawn from `rng` (any sampler type, or the Sampler interface): the
+// The same with its numbers drawn from `sampler` (any sampler type, or the Sampler interface): the
 // choice first, then the point. With a single emitter there is nothing to choose, and no number is
 // drawn for it: each costs a few hashes (docs/stage5.md, the speed ladder, step 15).
-template <class Numbers>
-DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingPoint& at, Numbers& rng,
+template <SamplerType S>
+DirectLightSample sample_direct_light(const LightingScene& scene, const ShadingPoint& at, S& sampler,
                                       const OffsetPolicy& offset) {
-  const float u_choice = scene.emitter_distribution().size() > 1 ? rng.uniform() : 0.5f;
-  return sample_direct_light(scene, at, u_choice, rng.uniform2(), offset);
+  const float u_choice = scene.emitter_distribution().size() > 1 ? sampler.uniform() : 0.5f;
+  return sample_direct_light(scene, at, u_choice, sampler.uniform2(), offset);
 }
 inline Color direct_by_light_sampling(const LightingScene& scene, const ShadingPoint& at, Sampler& rng,
                                       const OffsetPolicy& offset) {

@@ -8,7 +8,8 @@ const char* integrator_name(PathIntegrator integrator) {
   switch (integrator) {
     case PathIntegrator::naive: return "naive";
     case PathIntegrator::russian_roulette: return "rr";
-    case PathIntegrator::light_sampling: return "nee";
+    case PathIntegrator::next_event_estimation:
+      return "nee";
     case PathIntegrator::mis: return "mis";
   }
   return "?";

@@ -13,7 +13,7 @@ enum class SamplerKind { independent, sobol };
 
 // Every integrator, in the lecture's order, and its name as the program's flag spells it.
 inline constexpr PathIntegrator kPathIntegrators[] = {PathIntegrator::naive, PathIntegrator::russian_roulette,
-                                                      PathIntegrator::light_sampling, PathIntegrator::mis};
+                                                      PathIntegrator::next_event_estimation, PathIntegrator::mis};
 const char* integrator_name(PathIntegrator integrator);  // naive, rr, nee, mis
 const char* sampler_name(SamplerKind sampler);           // independent, sobol
 

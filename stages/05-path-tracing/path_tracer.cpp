@@ -39,10 +39,10 @@ float environment_sampling_pdf(const LightingScene& scene, Vec3 direction) {
   return scene.emitter_distribution().pmf(scene.environment_index()) * environment->pdf(direction);
 }
 
-template <class Numbers>
-Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const PathOptions& options, Numbers& rng) {
+template <SamplerType S>
+Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const PathOptions& options, S& sampler) {
   const PathIntegrator integrator = options.integrator;
-  const bool samples_lights = integrator == PathIntegrator::light_sampling || integrator == PathIntegrator::mis;
+  const bool samples_lights = integrator == PathIntegrator::next_event_estimation || integrator == PathIntegrator::mis;
   Color radiance(0.0f), beta(1.0f);
   Ray ray = camera_ray;
   // What the previous bounce was: a delta lobe (or the camera), and the density it sampled with.
@@ -51,12 +51,8 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
   Vec3 previous_point(0.0f);
 
   for (int bounce = 0;; ++bounce) {
-    // The two numbers of this bounce's direction are drawn first, before the ray is traced, though
-    // they are used only after it. They depend on nothing the ray finds, and drawn here, their
-    // chain of hashes and multiplications runs in the CPU's out-of-order window while the
-    // traversal waits on loads and mispredicted jumps; drawn where they are used, that chain stood
-    // between the hit and the next ray (docs/stage5.md, the speed ladder, steps 11 and 17).
-    const Vec2 u = rng.uniform2();
+    // This bounce's direction numbers, drawn before the ray is traced: docs/stage5.md, ladder step 17.
+    const Vec2 u = sampler.uniform2();
     const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
     if (!hit) {
       // BEGIN TASK stage5.path.environment
@@ -106,11 +102,11 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
     // division, polynomials, a square root) runs while the light sample is worked on, instead of
     // stalling at the end of the bounce (the speed ladder, step 11). A number to choose a lobe is
     // drawn only for a model that has more than one (step 15).
-    const float u_lobe = at.bsdf.has_lobe_choice() ? rng.uniform() : 0.5f;
+    const float u_lobe = at.bsdf.has_lobe_choice() ? sampler.uniform() : 0.5f;
     const std::optional<BsdfSample> s = at.bsdf.sample(at.wo, u, u_lobe);
     // BEGIN TASK stage5.path.next_event
     if (samples_lights && !at.bsdf.is_delta()) {
-      const DirectLightSample light = sample_direct_light(scene, at, rng, options.offset);
+      const DirectLightSample light = sample_direct_light(scene, at, sampler, options.offset);
       const float w = integrator == PathIntegrator::mis ? power_heuristic(light.pdf, at.bsdf.pdf(at.wo, light.wi)) : 1.0f;
       radiance += beta * light.value * w;
     }
@@ -127,7 +123,7 @@ Color path_radiance(const LightingScene& scene, const Ray& camera_ray, const Pat
 
     if (integrator != PathIntegrator::naive && bounce + 1 >= options.roulette_start) {
       const float p = survival_probability(beta);
-      if (!(rng.uniform() < p)) break;
+      if (!(sampler.uniform() < p)) break;
       beta /= p;
     }
   }

@@ -6,30 +6,29 @@
 // would grow as N^k), multiplying the throughput beta by f_r cos / p at each step.
 //
 // The lecture's path tracer, step by step, each kept as an integrator to compare:
-//  1. naive:            BRDF sampling only, a fixed maximum depth; light is found only when a path
-//                       happens to hit an emitter.
-//  2. russian_roulette: the same without a fixed depth: after a few bounces a path survives with
-//                       probability P and its throughput is divided by P, which keeps the
-//                       expectation unchanged (Arvo & Kirk, "Particle Transport and Image
-//                       Synthesis", SIGGRAPH 1990).
-//  3. light_sampling:   next-event estimation: at each non-delta vertex, direct light from a sampled
-//                       emitter point (stage 4's light estimator, behind a shadow ray), plus the
-//                       BRDF-sampled bounce for indirect light, which IGNORES the emitters it hits,
-//                       so no light is counted twice.
-//  4. mis:              both the light sample and the BRDF sample count emitted light, each weighted
-//                       by Veach's power heuristic w = p^2 / (p_light^2 + p_brdf^2) (Veach & Guibas,
-//                       "Optimally Combining Sampling Techniques for Monte Carlo Rendering",
-//                       SIGGRAPH 1995), which is what glossy surfaces under large lights need.
+//  1. naive (--integrator naive): BRDF sampling only, a fixed maximum depth; light is found only
+//     when a path happens to hit an emitter.
+//  2. russian_roulette (rr): the same without a fixed depth: after a few bounces a path survives
+//     with probability P and its throughput is divided by P, which keeps the expectation unchanged
+//     (Arvo & Kirk, "Particle Transport and Image Synthesis", SIGGRAPH 1990).
+//  3. next_event_estimation (nee): at each non-delta vertex, direct light from a sampled emitter
+//     point (stage 4's light estimator, behind a shadow ray), plus the BRDF-sampled bounce for
+//     indirect light, which IGNORES the emitters it hits, so no light is counted twice.
+//  4. mis (mis): both the light sample and the BRDF sample count emitted light, each weighted by
+//     Veach's power heuristic w = p^2 / (p_light^2 + p_brdf^2) (Veach & Guibas, "Optimally
+//     Combining Sampling Techniques for Monte Carlo Rendering", SIGGRAPH 1995), which is what
+//     glossy surfaces under large lights need.
 #pragma once
 
 #include "04-radiometry/direct_lighting.h"
+#include "05-path-tracing/sobol_sampler.h"
 
 #include <atomic>
 #include <cstdint>
 
 namespace rt {
 
-enum class PathIntegrator { naive, russian_roulette, light_sampling, mis };
+enum class PathIntegrator { naive, russian_roulette, next_event_estimation, mis };
 
 struct PathOptions {
   PathIntegrator integrator = PathIntegrator::mis;
@@ -52,14 +51,13 @@ float survival_probability(Color beta);
 // strategies: w_a = p_a^2 / (p_a^2 + p_b^2). Infinite p_a (a delta) gives 1.
 float power_heuristic(float pdf_a, float pdf_b);
 
-// The radiance arriving along a camera ray, estimated by one path, with numbers drawn from `rng`.
+// The radiance arriving along a camera ray, estimated by one path, with numbers drawn from `sampler`.
 // The sampler's type is a template parameter, so that its calls compile into the path loop: a path
 // draws five to seven numbers per bounce, and through the Sampler interface each would be a call the
 // compiler cannot see into (docs/stage5.md, the speed ladder). Defined in path_tracer.cpp for the
 // two samplers and for the interface itself (a caller that holds only a Sampler&).
-template <class Numbers>
-Color path_radiance(const LightingScene& scene, const Ray& ray, const PathOptions& options, Numbers& rng);
-class SobolSampler;
+template <SamplerType S>
+Color path_radiance(const LightingScene& scene, const Ray& ray, const PathOptions& options, S& sampler);
 extern template Color path_radiance(const LightingScene&, const Ray&, const PathOptions&, Rng&);
 extern template Color path_radiance(const LightingScene&, const Ray&, const PathOptions&, SobolSampler&);
 extern template Color path_radiance(const LightingScene&, const Ray&, const PathOptions&, Sampler&);

@@ -61,16 +61,6 @@ float mis_weight(const LightingScene& scene, const Camera& camera, std::span<con
   return strategy_weight(std::span(z_density.data(), size_t(t)), std::span(y_density.data(), size_t(s)));
 }
 
-namespace {
-
-[[maybe_unused]] Vec3 unit(Vec3 v) { return glm::normalize(v); }
-
-// Le of a light vertex towards a direction, over what its beta already holds: 1 on the front side
-// (every emitter here is Lambertian), 0 behind.
-[[maybe_unused]] float emits_towards(const PathVertex& light, Vec3 w) { return glm::dot(light.normal(), w) > 0.0f ? 1.0f : 0.0f; }
-
-}  // namespace
-
 StrategySample connect_strategy(const LightingScene& scene, const Camera& camera,
                                 std::span<const PathVertex> camera_path, std::span<const PathVertex> light_path,
                                 int s, int t, const PathVertex* light_point, const OffsetPolicy& offset) {
@@ -90,8 +80,8 @@ StrategySample connect_strategy(const LightingScene& scene, const Camera& camera
     const Vec3 to_camera = camera.position - y.point();
     const float distance2 = glm::dot(to_camera, to_camera);
     const Vec3 w = to_camera / std::sqrt(distance2);
-    const Color f = y.kind == VertexKind::light ? Color(emits_towards(y, w))
-                                                : scattering(y, w, unit(light_path[size_t(s - 2)].point() - y.point()));
+    const Color f = y.kind == VertexKind::light ? emission_towards(y, w)
+                                                : scattering(y, w, y.direction_to(light_path[size_t(s - 2)]));
     const float cos_camera = glm::dot(camera.forward, -w);
     const Color value = y.beta * f *
                         (std::abs(glm::dot(y.normal(), w)) * camera_importance(camera, -w) * cos_camera / distance2);
@@ -106,9 +96,9 @@ StrategySample connect_strategy(const LightingScene& scene, const Camera& camera
   const float distance2 = glm::dot(d, d);
   if (!(distance2 > 0.0f)) return out;
   const Vec3 w = d / std::sqrt(distance2);  // from z towards y
-  const Color fz = scattering(z, unit(camera_path[size_t(t - 2)].point() - z.point()), w);
-  const Color fy = y.kind == VertexKind::light ? Color(emits_towards(y, -w))
-                                               : scattering(y, -w, unit(light_path[size_t(s - 2)].point() - y.point()));
+  const Color fz = scattering(z, z.direction_to(camera_path[size_t(t - 2)]), w);
+  const Color fy = y.kind == VertexKind::light ? emission_towards(y, -w)
+                                               : scattering(y, -w, y.direction_to(light_path[size_t(s - 2)]));
   const float g = std::abs(glm::dot(z.normal(), w)) * std::abs(glm::dot(y.normal(), w)) / distance2;
   const Color value = z.beta * fz * fy * y.beta * g;
   if (value == Color(0.0f)) return out;
@@ -134,9 +124,9 @@ std::optional<PathVertex> sample_light_vertex(const LightingScene& scene, float 
   return light_vertex(sample_emitter_point(emitter, index, u), emitter.radiance, pdf_position);
 }
 
-template <class Numbers>
+template <SamplerType S>
 Color bdpt_sample(const LightingScene& scene, const Camera& camera, const Ray& camera_ray, const BdptOptions& options,
-                  Numbers& rng, std::vector<PathVertex>& camera_path, std::vector<PathVertex>& light_path,
+                  S& sampler, std::vector<PathVertex>& camera_path, std::vector<PathVertex>& light_path,
                   std::vector<Splat>& splats) {
   camera_path.clear();
   light_path.clear();
@@ -150,11 +140,11 @@ Color bdpt_sample(const LightingScene& scene, const Camera& camera, const Ray& c
     camera_walk.max_vertices = options.only.t;
     light_walk.max_vertices = std::max(options.only.s, 1);
   }
-  random_walk(scene, camera_ray, Color(1.0f), camera_direction_pdf(camera, camera_ray.direction), camera_walk, rng,
+  random_walk(scene, camera_ray, Color(1.0f), camera_direction_pdf(camera, camera_ray.direction), camera_walk, sampler,
               camera_path);
-  if (const std::optional<LightSubpathStart> start = start_light_subpath(scene, rng, light_walk.offset)) {
+  if (const std::optional<LightSubpathStart> start = start_light_subpath(scene, sampler, light_walk.offset)) {
     light_path.push_back(start->origin);
-    random_walk(scene, start->ray, start->beta, start->pdf_w, light_walk, rng, light_path);
+    random_walk(scene, start->ray, start->beta, start->pdf_w, light_walk, sampler, light_path);
   }
   const OffsetPolicy& offset = options.walk.offset;
 
@@ -168,8 +158,8 @@ Color bdpt_sample(const LightingScene& scene, const Camera& camera, const Ray& c
       std::optional<PathVertex> fresh;
       if (s == 1 && t >= 2) {
         if (camera_path[size_t(t - 1)].delta) continue;  // no numbers drawn for a connection that cannot be
-        const float u_choice = rng.uniform();
-        fresh = sample_light_vertex(scene, u_choice, rng.uniform2());
+        const float u_choice = sampler.uniform();
+        fresh = sample_light_vertex(scene, u_choice, sampler.uniform2());
         if (!fresh) continue;
       }
       const PathVertex* light_point = fresh ? &*fresh : nullptr;

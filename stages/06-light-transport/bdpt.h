@@ -88,9 +88,9 @@ struct Splat {
 // One BDPT sample for the camera ray through a pixel: returns what the strategies with t >= 2 add
 // to that pixel and appends the t = 1 contributions to `splats`. `camera_path` and `light_path` are
 // scratch space, reused between samples.
-template <class Numbers>
+template <SamplerType S>
 Color bdpt_sample(const LightingScene& scene, const Camera& camera, const Ray& camera_ray, const BdptOptions& options,
-                  Numbers& rng, std::vector<PathVertex>& camera_path, std::vector<PathVertex>& light_path,
+                  S& sampler, std::vector<PathVertex>& camera_path, std::vector<PathVertex>& light_path,
                   std::vector<Splat>& splats);
 
 }  // namespace rt

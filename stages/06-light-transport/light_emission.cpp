@@ -90,12 +90,12 @@ PathVertex light_vertex(const EmitterPoint& point, Color radiance, float pdf_pos
   return v;
 }
 
-template <class Numbers>
-std::optional<LightSubpathStart> start_light_subpath(const LightingScene& scene, Numbers& rng,
+template <SamplerType S>
+std::optional<LightSubpathStart> start_light_subpath(const LightingScene& scene, S& sampler,
                                                      const OffsetPolicy& offset) {
-  const float u_choice = rng.uniform();
-  const Vec2 u_position = rng.uniform2();
-  const Vec2 u_direction = rng.uniform2();
+  const float u_choice = sampler.uniform();
+  const Vec2 u_position = sampler.uniform2();
+  const Vec2 u_direction = sampler.uniform2();
   const std::optional<EmissionSample> e = sample_emission(scene, u_choice, u_position, u_direction);
   if (!e || !(e->pdf_position > 0.0f)) return std::nullopt;
   LightSubpathStart start;

@@ -59,8 +59,8 @@ struct LightSubpathStart {
   Color beta;   // after the emission: Le cos / (P_choice p_A p_w)
   float pdf_w;  // of the emitted direction
 };
-template <class Numbers>
-std::optional<LightSubpathStart> start_light_subpath(const LightingScene& scene, Numbers& rng,
+template <SamplerType S>
+std::optional<LightSubpathStart> start_light_subpath(const LightingScene& scene, S& sampler,
                                                      const OffsetPolicy& offset);
 
 }  // namespace rt

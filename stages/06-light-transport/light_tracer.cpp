@@ -4,17 +4,17 @@
 
 namespace rt {
 
-template <class Numbers>
-void light_tracing_sample(const LightingScene& scene, const Camera& camera, const WalkSettings& walk, Numbers& rng,
+template <SamplerType S>
+void light_tracing_sample(const LightingScene& scene, const Camera& camera, const WalkSettings& walk, S& sampler,
                           std::vector<PathVertex>& light_path, std::vector<Splat>& splats) {
   light_path.clear();
   // BEGIN TASK stage6.lt.sample
-  const std::optional<LightSubpathStart> start = start_light_subpath(scene, rng, walk.offset);
+  const std::optional<LightSubpathStart> start = start_light_subpath(scene, sampler, walk.offset);
   if (!start) return;
   light_path.push_back(start->origin);
   WalkSettings importance = walk;
   importance.mode = Transport::importance;
-  random_walk(scene, start->ray, start->beta, start->pdf_w, importance, rng, light_path);
+  random_walk(scene, start->ray, start->beta, start->pdf_w, importance, sampler, light_path);
   // The camera "subpath" is the pinhole alone.
   const PathVertex eye = camera_vertex(camera);
   for (int s = 1; s <= int(light_path.size()); ++s) {
@@ -23,7 +23,7 @@ void light_tracing_sample(const LightingScene& scene, const Camera& camera, cons
   }
   // PLACEHOLDER
   // report_unfinished_task("stage6.lt.sample");
-  // (void)scene, (void)camera, (void)walk, (void)rng, (void)splats;
+  // (void)scene, (void)camera, (void)walk, (void)sampler, (void)splats;
   // END TASK
 }
 

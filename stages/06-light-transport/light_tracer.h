@@ -15,8 +15,8 @@ namespace rt {
 // Task stage6.lt.sample. One light subpath (start_light_subpath, random_walk in importance mode)
 // and every one of its vertices, the light's own included, connected to the camera
 // (connect_strategy with t = 1); each contribution appended to `splats`.
-template <class Numbers>
-void light_tracing_sample(const LightingScene& scene, const Camera& camera, const WalkSettings& walk, Numbers& rng,
+template <SamplerType S>
+void light_tracing_sample(const LightingScene& scene, const Camera& camera, const WalkSettings& walk, S& sampler,
                           std::vector<PathVertex>& light_path, std::vector<Splat>& splats);
 
 }  // namespace rt

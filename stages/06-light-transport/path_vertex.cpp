@@ -30,14 +30,8 @@ float to_area_density(float pdf_w, const PathVertex& from, const PathVertex& to)
   // END TASK
 }
 
-namespace {
-
-Vec3 direction(Vec3 from, Vec3 to) { return glm::normalize(to - from); }
-
-}  // namespace
-
 float vertex_pdf(const Camera& camera, const PathVertex& v, const PathVertex* prev, const PathVertex& next) {
-  const Vec3 w = direction(v.point(), next.point());
+  const Vec3 w = v.direction_to(next);
   float pdf_w = 0.0f;
   if (v.kind == VertexKind::camera) {
     pdf_w = camera_direction_pdf(camera, w);
@@ -47,7 +41,7 @@ float vertex_pdf(const Camera& camera, const PathVertex& v, const PathVertex* pr
     pdf_w = delta_lobe_density(v, w);
   } else if (prev) {
     const ShadingPoint& at = *v.at;
-    pdf_w = at.bsdf.pdf(at.frame.to_local(direction(v.point(), prev->point())), at.frame.to_local(w));
+    pdf_w = at.bsdf.pdf(at.frame.to_local(v.direction_to(*prev)), at.frame.to_local(w));
   }
   return to_area_density(pdf_w, v, next);
 }
@@ -61,7 +55,7 @@ float light_origin_pdf(const LightingScene& scene, const PathVertex& v) {
 float light_emission_pdf(const LightingScene& scene, const PathVertex& v, const PathVertex& next) {
   if (v.emitter < 0) return 0.0f;
   const Vec3 front = scene.emitters()[size_t(v.emitter)].normal_at(v.point());
-  return to_area_density(emission_direction_pdf(front, direction(v.point(), next.point())), v, next);
+  return to_area_density(emission_direction_pdf(front, v.direction_to(next)), v, next);
 }
 
 Color scattering(const PathVertex& v, Vec3 towards_camera, Vec3 towards_light) {
@@ -88,15 +82,15 @@ float importance_correction(const PathVertex& v, Vec3 wo_world, Vec3 wi_world, c
   return factor;
 }
 
-template <class Numbers>
-void random_walk(const LightingScene& scene, Ray ray, Color beta, float pdf_w, const WalkSettings& settings,
-                 Numbers& rng, std::vector<PathVertex>& path) {
+template <SamplerType S>
+void random_walk(const LightingScene& scene, Ray ray, Color beta, float pdf_w, const WalkSettings& settings, S& sampler,
+                 std::vector<PathVertex>& path) {
   const float beta_start = max_component(beta);
   if (!(beta_start > 0.0f)) return;
   const int max_vertices = std::min(settings.max_vertices, kMaxSubpathVertices);
   // BEGIN TASK stage6.bdpt.random_walk
   for (int bounce = 0; int(path.size()) < max_vertices; ++bounce) {
-    const Vec2 u = rng.uniform2();
+    const Vec2 u = sampler.uniform2();
     const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
     if (!hit) break;
     PathVertex v;
@@ -110,7 +104,7 @@ void random_walk(const LightingScene& scene, Ray ray, Color beta, float pdf_w, c
     if (int(path.size()) >= max_vertices) break;
 
     const ShadingPoint& at = *path.back().at;
-    const float u_lobe = at.bsdf.has_lobe_choice() ? rng.uniform() : 0.5f;
+    const float u_lobe = at.bsdf.has_lobe_choice() ? sampler.uniform() : 0.5f;
     const std::optional<BsdfSample> s = at.bsdf.sample(at.wo, u, u_lobe);
     if (!s) break;
     const Vec3 wi = at.frame.to_world(s->wi);
@@ -126,13 +120,13 @@ void random_walk(const LightingScene& scene, Ray ray, Color beta, float pdf_w, c
 
     if (bounce + 1 >= settings.roulette_start) {
       const float p = survival_probability(Color(max_component(beta) / beta_start));
-      if (!(rng.uniform() < p)) break;
+      if (!(sampler.uniform() < p)) break;
       beta /= p;
     }
   }
   // PLACEHOLDER
   // report_unfinished_task("stage6.bdpt.random_walk");
-  // (void)scene, (void)ray, (void)beta, (void)pdf_w, (void)settings, (void)rng, (void)path, (void)beta_start;
+  // (void)scene, (void)ray, (void)beta, (void)pdf_w, (void)settings, (void)sampler, (void)path, (void)beta_start;
   // (void)max_vertices;
   // END TASK
 }

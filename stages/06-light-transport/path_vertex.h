@@ -17,6 +17,7 @@
 
 #include "04-radiometry/direct_lighting.h"
 #include "common/camera.h"
+#include "common/emission.h"
 
 #include <optional>
 #include <vector>
@@ -49,7 +50,15 @@ struct PathVertex {
 
   Vec3 point() const { return hit.point; }
   Vec3 normal() const { return hit.normal; }
+  // The unit direction from this vertex towards another.
+  Vec3 direction_to(const PathVertex& other) const { return glm::normalize(other.point() - point()); }
 };
+
+// Le of a light vertex towards w, over the Le its beta already holds: 1 on the emitter's front
+// side, 0 behind (common/emission.h's one-sided rule).
+inline Color emission_towards(const PathVertex& light, Vec3 w) {
+  return front_side_emission(Color(1.0f), glm::dot(light.normal(), w) > 0.0f);
+}
 
 // The pinhole as a path's first vertex: its point, and the view direction as its normal.
 PathVertex camera_vertex(const Camera& camera);
@@ -112,8 +121,8 @@ struct WalkSettings {
 // the next direction, whose reverse density sets the previous vertex's pdf_rev; delta lobes give
 // both directions delta_lobe_density. Russian roulette as in stage 5 (survival_probability on the throughput relative
 // to the walk's start), at most settings.max_vertices vertices. Ends where a ray leaves the scene.
-template <class Numbers>
-void random_walk(const LightingScene& scene, Ray ray, Color beta, float pdf_w,
-                 const WalkSettings& settings, Numbers& rng, std::vector<PathVertex>& path);
+template <SamplerType S>
+void random_walk(const LightingScene& scene, Ray ray, Color beta, float pdf_w, const WalkSettings& settings, S& sampler,
+                 std::vector<PathVertex>& path);
 
 }  // namespace rt

@@ -63,12 +63,12 @@ struct VisiblePoint {
 
 // A camera path through delta lobes to its first other surface. Adds to `light` what it sees
 // emitted on the way (and the background, if it leaves) and the direct light at that surface.
-VisiblePoint trace_visible_point(const LightingScene& scene, Ray ray, const SppmOptions& options,
-                                 SobolSampler& rng, Color& light) {
+VisiblePoint trace_visible_point(const LightingScene& scene, Ray ray, const SppmOptions& options, SobolSampler& sampler,
+                                 Color& light) {
   Color beta(1.0f);
   float distance = 0.0f;
   for (int depth = 0; depth <= options.max_depth; ++depth) {
-    const Vec2 u = rng.uniform2();
+    const Vec2 u = sampler.uniform2();
     const std::optional<Hit> hit = scene.closest_hit(ray, Interval::positive());
     if (!hit) {
       light += beta * scene.background();
@@ -78,10 +78,10 @@ VisiblePoint trace_visible_point(const LightingScene& scene, Ray ray, const Sppm
     distance += hit->t * glm::length(ray.direction);
     const ShadingPoint at = make_shading_point(scene, *hit, -ray.direction);
     if (!at.bsdf.is_delta()) {
-      light += beta * sample_direct_light(scene, at, rng, options.walk.offset).value;
+      light += beta * sample_direct_light(scene, at, sampler, options.walk.offset).value;
       return {at, beta, distance};
     }
-    const std::optional<BsdfSample> s = at.bsdf.sample(at.wo, u, rng.uniform());
+    const std::optional<BsdfSample> s = at.bsdf.sample(at.wo, u, sampler.uniform());
     if (!s) return {};
     beta *= s->weight;
     ray = spawn_ray(*hit, at.frame.to_world(s->wi), options.walk.offset);
@@ -104,7 +104,7 @@ void trace_photon(const LightingScene& scene, const SppmOptions& options, Rng& r
   for (size_t i = 2; i < path.size(); ++i) {
     const PathVertex& v = path[i];
     if (v.delta || !is_finite(v.beta)) continue;
-    photons.push_back(Photon{v.point(), glm::normalize(path[i - 1].point() - v.point()), v.beta});
+    photons.push_back(Photon{v.point(), v.direction_to(path[i - 1]), v.beta});
   }
 }
 
@@ -140,12 +140,13 @@ SampleSums render_sppm(const LightingScene& scene, const Camera& camera, const R
           // Scrambled Sobol points over the passes (stage 5's sampler): one camera path per pixel and
           // pass, so the passes' film points stratify the pixel, which an edge (the lamp's, in the
           // Cornell box) needs; independent points left such pixels the noisiest of the image.
-          SobolSampler rng(settings.seed, std::uint64_t(py) * std::uint64_t(camera.width) + std::uint64_t(px), pass);
-          const Vec2 film = Vec2(float(px), float(py)) + rng.uniform2();
-          const Ray ray = camera.aperture_radius > 0.0f ? generate_lens_ray(camera, film, rng.uniform2())
+          SobolSampler sampler(settings.seed, std::uint64_t(py) * std::uint64_t(camera.width) + std::uint64_t(px),
+                               pass);
+          const Vec2 film = Vec2(float(px), float(py)) + sampler.uniform2();
+          const Ray ray = camera.aperture_radius > 0.0f ? generate_lens_ray(camera, film, sampler.uniform2())
                                                         : generate_camera_ray(camera, film);
           const size_t i = size_t(y) * size_t(width) + size_t(x);
-          visible[i] = trace_visible_point(scene, ray, options, rng, light_with_pass[i]);
+          visible[i] = trace_visible_point(scene, ray, options, sampler, light_with_pass[i]);
           if (visible[i].at && stats[i].radius == 0.0f)
             stats[i].radius = kFootprintRadii * pixel_angle * std::max(visible[i].distance, 1e-30f);
         }

@@ -75,7 +75,8 @@ TEST(CornellBox, EveryIntegratorFindsTheReferenceOnEveryRegion) {
       PathOptions options;
       options.integrator = integrator;
       options.max_depth = 64;  // naive: 0.73^64 of the light is left out, nothing measurable
-      const bool samples_lights = integrator == PathIntegrator::light_sampling || integrator == PathIntegrator::mis;
+      const bool samples_lights =
+          integrator == PathIntegrator::next_event_estimation || integrator == PathIntegrator::mis;
       const Estimate e = region_estimate(region, options, samples_lights ? 256 : 1024, 11);
       EXPECT_NEAR(e.mean, expected, 3.0 * e.standard_error) << region.name << ", " << integrator_name(integrator);
       EXPECT_LT(e.standard_error, (samples_lights ? 0.015 : 0.05) * expected)

@@ -39,7 +39,8 @@ TEST(EnvironmentPaths, CameraAndMirrorSeeTheEnvironmentExactly) {
   mirror.type = MaterialType::mirror;
   mirror.reflectance = Color(0.5f, 0.25f, 1.0f);
   const LightingScene scene(scene_of(mirror, kFloor, peaked_sky(50.0f, 0.5f)));
-  for (const PathIntegrator integrator : {PathIntegrator::naive, PathIntegrator::light_sampling, PathIntegrator::mis}) {
+  for (const PathIntegrator integrator :
+       {PathIntegrator::naive, PathIntegrator::next_event_estimation, PathIntegrator::mis}) {
     PathOptions options;
     options.integrator = integrator;
     Rng rng(1, 0, 0);
@@ -139,7 +140,7 @@ TEST(EnvironmentPaths, MisAgreesWithNextEventEstimationOnAGlossyFloor) {
   const Ray ray{Vec3(-r.x, r.y, -r.z) * 2.0f, glm::normalize(Vec3(r.x, -r.y, r.z))};
   ASSERT_TRUE(RT_GRADED(scene.closest_hit)(ray, Interval::positive()).has_value()) << "the ray must hit the floor";
   PathOptions nee, mis;
-  nee.integrator = PathIntegrator::light_sampling;
+  nee.integrator = PathIntegrator::next_event_estimation;
   mis.integrator = PathIntegrator::mis;
   const Estimate a = estimate(scene, ray, nee, 40000, 1), b = estimate(scene, ray, mis, 40000, 2);
   EXPECT_NEAR(a.mean, b.mean, 4.0 * std::hypot(a.standard_error, b.standard_error))
