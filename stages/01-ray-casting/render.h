@@ -12,8 +12,7 @@
 #include "01-ray-casting/camera_rays.h"
 #include "01-ray-casting/pixel_filter.h"
 #include "common/image.h"
-#include "common/interrupt.h"
-#include "common/parallel.h"
+#include "common/pixel_passes.h"
 #include "common/program.h"
 #include "common/progress.h"
 #include "common/random.h"
@@ -53,9 +52,9 @@ class PixelSampleSource {
 int add_pixel_samples(const Camera& camera, const PixelFilter& filter, const RenderSettings& settings, int x, int y,
                       int begin, int end, PixelSampleSource& samples, Color& sum);
 
-// The source of a SamplerType (Rng unless a later stage passes another) and a radiance function
+// The source of samplers of type S (Rng unless a later stage passes another) and a radiance function
 // `radiance(ray, sampler)`.
-template <class SamplerType, class RadianceFn>
+template <SamplerType S, class RadianceFn>
 class PixelSamplesOf final : public PixelSampleSource {
  public:
   explicit PixelSamplesOf(RadianceFn& radiance) : radiance_(radiance) {}
@@ -66,14 +65,14 @@ class PixelSamplesOf final : public PixelSampleSource {
 
  private:
   RadianceFn& radiance_;
-  std::optional<SamplerType> sampler_;
+  std::optional<S> sampler_;
 };
 
-// add_pixel_samples with the samples of SamplerType and `radiance(ray, sampler)`.
-template <class SamplerType, class RadianceFn>
+// add_pixel_samples with the samples of S and `radiance(ray, sampler)`.
+template <SamplerType S, class RadianceFn>
 int add_pixel_samples(const Camera& camera, const PixelFilter& filter, const RenderSettings& settings, int x, int y,
                       int begin, int end, RadianceFn&& radiance, Color& sum) {
-  PixelSamplesOf<SamplerType, std::remove_reference_t<RadianceFn>> samples(radiance);
+  PixelSamplesOf<S, std::remove_reference_t<RadianceFn>> samples(radiance);
   return add_pixel_samples(camera, filter, settings, x, y, begin, end, samples, sum);
 }
 
@@ -87,55 +86,45 @@ inline int samples_per_pass(std::int64_t pixels, int spp) {
 
 // Renders samples [first_sample, first_sample + spp) of each pixel of `settings.window()` and
 // returns, per pixel of that window, their sum and number (the window's pixel (0, 0) is the
-// image's (x0, y0)). The samples are taken in passes over the whole window, samples_per_pass of
-// each pixel a pass, so a render stopped by Ctrl-C is a whole image with (almost) the same number
-// of samples in every pixel, not a few finished pixels. Each pixel still adds its samples in the
-// order k = 0, 1, 2, ... whichever thread takes its tile in each pass, so the image is the same bit
-// for bit for any thread count and any pass size. `progress`, if given, is advanced by the samples
-// each tile finishes (fewer than asked for after a stop request, which is how the program knows how
-// much it has). `SamplerType` makes each sample's numbers from (seed, pixel, sample index): Rng
-// (independent random numbers) unless a later stage passes another.
-template <class SamplerType = Rng, class RadianceFn>
-SampleSums render_samples(const Camera& camera, const RenderSettings& settings, int threads,
-                          RadianceFn&& radiance, ProgressBar* progress = nullptr) {
+// image's (x0, y0)). The samples are taken in passes over the whole window (render_in_passes),
+// samples_per_pass of each pixel a pass. Each pixel adds its samples in the order k = 0, 1, 2, ...
+// whichever thread takes its tile in each pass, so the image is the same bit for bit for any thread
+// count and any pass size. `progress`, if given, is advanced by the samples each tile finishes
+// (fewer than asked for after a stop request, which is how the program knows how much it has). `S` makes each sample's
+// numbers from (seed, pixel, sample index): Rng (independent random numbers) unless a later stage passes another.
+template <SamplerType S = Rng, class RadianceFn>
+SampleSums render_samples(const Camera& camera, const RenderSettings& settings, int threads, RadianceFn&& radiance,
+                          ProgressBar* progress = nullptr) {
   const PixelRect window = settings.window();
   const PixelFilter filter(settings.filter);  // once: it tabulates its inverse distribution
   SampleSums sums(window.width(), window.height());
-  const int per_pass = samples_per_pass(window.area(), settings.spp);
-  for (int begin = 0; begin < settings.spp && !interrupt_requested(); begin += per_pass) {
-    const int end = std::min(settings.spp, begin + per_pass);
-    parallel_for_tiles(window.width(), window.height(), threads, [&](const PixelRect& tile) {
-      std::uint64_t tile_samples = 0;
-      for (int ty = tile.y0; ty < tile.y1; ++ty)
-        for (int tx = tile.x0; tx < tile.x1; ++tx) {
-          Color sum = sums.sum(tx, ty);
-          const int added = add_pixel_samples<SamplerType>(camera, filter, settings, window.x0 + tx, window.y0 + ty,
-                                                           begin, end, radiance, sum);
-          sums.set(tx, ty, sum, sums.count(tx, ty) + std::uint32_t(added));
-          tile_samples += std::uint64_t(added);
-        }
-      if (progress) progress->advance(tile_samples);
-    });
-  }
+  render_in_passes(window.width(), window.height(), settings.spp, samples_per_pass(window.area(), settings.spp),
+                   threads, progress, [&](const PixelRect&, int x, int y, const PixelPass& pass) {
+                     Color sum = sums.sum(x, y);
+                     const int added = add_pixel_samples<S>(camera, filter, settings, window.x0 + x, window.y0 + y,
+                                                            pass.begin, pass.end, radiance, sum);
+                     sums.set(x, y, sum, sums.count(x, y) + std::uint32_t(added));
+                     return added;
+                   });
   return sums;
 }
 
 // A stage program's whole run: stage 1's pixel loop over `camera` with `radiance`, behind the
 // program shell's progress bar and output (common/program.h).
-template <class SamplerType = Rng, class RadianceFn>
+template <SamplerType S = Rng, class RadianceFn>
 void render_and_write(const char* program, const CommonOptions& options, const SceneDescription& description,
                       const RenderSettings& settings, const Camera& camera, PixelMeaning meaning,
                       RadianceFn&& radiance) {
   render_with_progress_and_write(program, options, description, settings, meaning, [&](ProgressBar* progress) {
-    return render_samples<SamplerType>(camera, settings, options.threads, radiance, progress);
+    return render_samples<S>(camera, settings, options.threads, radiance, progress);
   });
 }
 
 // The image: each pixel the mean of its samples (SampleSums::mean).
-template <class SamplerType = Rng, class RadianceFn>
-Image render_image(const Camera& camera, const RenderSettings& settings, int threads,
-                   RadianceFn&& radiance, ProgressBar* progress = nullptr) {
-  return render_samples<SamplerType>(camera, settings, threads, std::forward<RadianceFn>(radiance), progress).mean();
+template <SamplerType S = Rng, class RadianceFn>
+Image render_image(const Camera& camera, const RenderSettings& settings, int threads, RadianceFn&& radiance,
+                   ProgressBar* progress = nullptr) {
+  return render_samples<S>(camera, settings, threads, std::forward<RadianceFn>(radiance), progress).mean();
 }
 
 }  // namespace rt

@@ -53,7 +53,7 @@ bool pixel_converged(const PixelStatistics& statistics, float tolerance);
 // (add_pixel_samples, one sample at a time so that each sample's luminance is seen) until it has
 // `settings.spp` or passes pixel_converged after at least min_spp. The sums and counts come back
 // as from render_samples; a pixel that never converges has exactly the uniform render's sum.
-template <class SamplerType = Rng, class RadianceFn>
+template <SamplerType S = Rng, class RadianceFn>
 SampleSums render_adaptive(const Camera& camera, const RenderSettings& settings, const AdaptiveSettings& adaptive,
                            int threads, RadianceFn&& radiance, ProgressBar* progress = nullptr) {
   const PixelRect window = settings.window();
@@ -61,34 +61,27 @@ SampleSums render_adaptive(const Camera& camera, const RenderSettings& settings,
   SampleSums sums(window.width(), window.height());
   std::vector<PixelStatistics> statistics(window.area());
   std::vector<std::uint8_t> done(window.area(), 0);
-  const int batch = std::max(1, adaptive.batch);
-  for (int begin = 0; begin < settings.spp && !interrupt_requested(); begin += batch) {
-    const int end = std::min(settings.spp, begin + batch);
-    parallel_for_tiles(window.width(), window.height(), threads, [&](const PixelRect& tile) {
-      std::uint64_t tile_samples = 0;
-      for (int ty = tile.y0; ty < tile.y1; ++ty)
-        for (int tx = tile.x0; tx < tile.x1; ++tx) {
-          const size_t i = size_t(ty) * size_t(window.width()) + size_t(tx);
-          if (done[i]) continue;
-          Color sum = sums.sum(tx, ty);
-          int added = 0;
-          for (int k = begin; k < end; ++k) {
-            Color sample(0.0f);
-            if (add_pixel_samples<SamplerType>(camera, filter, settings, window.x0 + tx, window.y0 + ty, k, k + 1,
-                                               radiance, sample) == 0)
-              break;  // a stop request
-            sum += sample;
-            statistics[i].add(double(luminance(sample)));
-            ++added;
-          }
-          sums.set(tx, ty, sum, sums.count(tx, ty) + std::uint32_t(added));
-          tile_samples += std::uint64_t(added);
-          if (int(statistics[i].count) >= adaptive.min_spp && pixel_converged(statistics[i], adaptive.tolerance))
-            done[i] = 1;
+  render_in_passes(
+      window.width(), window.height(), settings.spp, adaptive.batch, threads, progress,
+      [&](const PixelRect&, int x, int y, const PixelPass& pass) {
+        const size_t i = size_t(y) * size_t(window.width()) + size_t(x);
+        if (done[i]) return 0;
+        Color sum = sums.sum(x, y);
+        int added = 0;
+        for (int k = pass.begin; k < pass.end; ++k) {
+          Color sample(0.0f);
+          if (add_pixel_samples<S>(camera, filter, settings, window.x0 + x, window.y0 + y, k, k + 1, radiance,
+                                   sample) == 0)
+            break;  // a stop request
+          sum += sample;
+          statistics[i].add(double(luminance(sample)));
+          ++added;
         }
-      if (progress) progress->advance(tile_samples);
-    });
-  }
+        sums.set(x, y, sum, sums.count(x, y) + std::uint32_t(added));
+        if (int(statistics[i].count) >= adaptive.min_spp && pixel_converged(statistics[i], adaptive.tolerance))
+          done[i] = 1;
+        return added;
+      });
   return sums;
 }
 

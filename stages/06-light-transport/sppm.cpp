@@ -4,8 +4,7 @@
 #include "05-path-tracing/sobol_sampler.h"
 #include "06-light-transport/light_emission.h"
 #include "06-light-transport/photon_grid.h"
-#include "common/interrupt.h"
-#include "common/parallel.h"
+#include "common/pixel_passes.h"
 #include "common/random.h"
 #include "common/task.h"
 
@@ -120,69 +119,68 @@ SampleSums render_sppm(const LightingScene& scene, const Camera& camera, const R
   const float pixel_angle = 2.0f * camera.tan_half_vfov / float(camera.height);
   std::vector<PhotonStatistics> stats(pixels, PhotonStatistics{0.0, std::max(options.initial_radius, 0.0f), Color(0.0f)});
   std::vector<Color> light(pixels, Color(0.0f));  // emitted and direct light, summed over the passes
-  std::vector<Color> light_with_pass(pixels);     // the same with the pass under way, kept once it ends
+  std::vector<Color> light_with_pass(light);      // the same with the pass under way, kept once it ends
   std::vector<VisiblePoint> visible(pixels);
   const int chunks = (options.photons_per_pass + kPhotonsPerChunk - 1) / kPhotonsPerChunk;
   std::vector<std::vector<Photon>> chunk_photons(static_cast<size_t>(chunks));
 
   // A stop (Ctrl-C) is checked inside a pass, per tile and per chunk of photons, since one pass of
   // 10^7 photons takes many seconds: a pass it cuts short is dropped whole, and the image is made
-  // of the passes that ended.
+  // of the passes that ended. A pass is one camera path per pixel, then the photons.
   int passes = 0;
-  for (; passes < settings.spp && !interrupt_requested(); ++passes) {
-    const std::uint64_t pass = std::uint64_t(settings.first_sample + passes);
-    light_with_pass = light;
-    parallel_for_tiles(width, height, threads, [&](const PixelRect& tile) {
-      if (interrupt_requested()) return;
-      for (int y = tile.y0; y < tile.y1; ++y)
-        for (int x = tile.x0; x < tile.x1; ++x) {
-          const int px = window.x0 + x, py = window.y0 + y;
-          // Scrambled Sobol points over the passes (stage 5's sampler): one camera path per pixel and
-          // pass, so the passes' film points stratify the pixel, which an edge (the lamp's, in the
-          // Cornell box) needs; independent points left such pixels the noisiest of the image.
-          SobolSampler sampler(settings.seed, std::uint64_t(py) * std::uint64_t(camera.width) + std::uint64_t(px),
-                               pass);
-          const Vec2 film = Vec2(float(px), float(py)) + sampler.uniform2();
-          const Ray ray = camera.aperture_radius > 0.0f ? generate_lens_ray(camera, film, sampler.uniform2())
-                                                        : generate_camera_ray(camera, film);
-          const size_t i = size_t(y) * size_t(width) + size_t(x);
-          visible[i] = trace_visible_point(scene, ray, options, sampler, light_with_pass[i]);
-          if (visible[i].at && stats[i].radius == 0.0f)
-            stats[i].radius = kFootprintRadii * pixel_angle * std::max(visible[i].distance, 1e-30f);
-        }
-    });
-
-    float max_radius = 0.0f;
-    for (size_t i = 0; i < pixels; ++i)
-      if (visible[i].at) max_radius = std::max(max_radius, stats[i].radius);
-    parallel_for(chunks, threads, [&](int c) {
-      std::vector<Photon>& out = chunk_photons[size_t(c)];
-      out.clear();
-      std::vector<PathVertex> path;
-      const int first = c * kPhotonsPerChunk, last = std::min(options.photons_per_pass, first + kPhotonsPerChunk);
-      if (interrupt_requested()) return;
-      for (int j = first; j < last; ++j) {
-        Rng rng(settings.seed, kPhotonStream, pass * std::uint64_t(options.photons_per_pass) + std::uint64_t(j));
-        trace_photon(scene, options, rng, path, out);
-      }
-    });
-    if (interrupt_requested()) break;
-    if (max_radius > 0.0f) {
-      const PhotonGrid grid(chunk_photons, 2.0f * max_radius);
-      if (interrupt_requested()) break;
-      parallel_for_tiles(width, height, threads, [&](const PixelRect& tile) {
-        for (int y = tile.y0; y < tile.y1; ++y)
-          for (int x = tile.x0; x < tile.x1; ++x) {
-            const size_t i = size_t(y) * size_t(width) + size_t(x);
-            if (!visible[i].at) continue;
-            const Gathered g = gather_photons(grid, *visible[i].at, stats[i].radius);
-            progressive_update(stats[i], g.found, visible[i].beta * g.flux, options.alpha);
+  render_in_passes(
+      width, height, settings.spp, 1, threads, nullptr,
+      [&](const PixelRect&, int x, int y, const PixelPass& p) {
+        const std::uint64_t pass = std::uint64_t(settings.first_sample + p.begin);
+        const int px = window.x0 + x, py = window.y0 + y;
+        // Scrambled Sobol points over the passes (stage 5's sampler): one camera path per pixel and
+        // pass, so the passes' film points stratify the pixel, which an edge (the lamp's, in the
+        // Cornell box) needs; independent points left such pixels the noisiest of the image.
+        SobolSampler sampler(settings.seed, std::uint64_t(py) * std::uint64_t(camera.width) + std::uint64_t(px), pass);
+        const Vec2 film = Vec2(float(px), float(py)) + sampler.uniform2();
+        const Ray ray = camera.aperture_radius > 0.0f ? generate_lens_ray(camera, film, sampler.uniform2())
+                                                      : generate_camera_ray(camera, film);
+        const size_t i = size_t(y) * size_t(width) + size_t(x);
+        visible[i] = trace_visible_point(scene, ray, options, sampler, light_with_pass[i]);
+        if (visible[i].at && stats[i].radius == 0.0f)
+          stats[i].radius = kFootprintRadii * pixel_angle * std::max(visible[i].distance, 1e-30f);
+        return 0;
+      },
+      [&](const PixelPass& p) {
+        if (interrupt_requested()) return;
+        const std::uint64_t pass = std::uint64_t(settings.first_sample + p.begin);
+        float max_radius = 0.0f;
+        for (size_t i = 0; i < pixels; ++i)
+          if (visible[i].at) max_radius = std::max(max_radius, stats[i].radius);
+        parallel_for(chunks, threads, [&](int c) {
+          std::vector<Photon>& out = chunk_photons[size_t(c)];
+          out.clear();
+          std::vector<PathVertex> path;
+          const int first = c * kPhotonsPerChunk, last = std::min(options.photons_per_pass, first + kPhotonsPerChunk);
+          if (interrupt_requested()) return;
+          for (int j = first; j < last; ++j) {
+            Rng rng(settings.seed, kPhotonStream, pass * std::uint64_t(options.photons_per_pass) + std::uint64_t(j));
+            trace_photon(scene, options, rng, path, out);
           }
+        });
+        if (interrupt_requested()) return;
+        if (max_radius > 0.0f) {
+          const PhotonGrid grid(chunk_photons, 2.0f * max_radius);
+          if (interrupt_requested()) return;
+          parallel_for_tiles(width, height, threads, [&](const PixelRect& tile) {
+            for (int y = tile.y0; y < tile.y1; ++y)
+              for (int x = tile.x0; x < tile.x1; ++x) {
+                const size_t i = size_t(y) * size_t(width) + size_t(x);
+                if (!visible[i].at) continue;
+                const Gathered g = gather_photons(grid, *visible[i].at, stats[i].radius);
+                progressive_update(stats[i], g.found, visible[i].beta * g.flux, options.alpha);
+              }
+          });
+        }
+        light = light_with_pass;  // the pass ended: its light is kept, and the next one adds to it
+        ++passes;
+        if (progress) progress->advance(pixels);
       });
-    }
-    light.swap(light_with_pass);
-    if (progress) progress->advance(pixels);
-  }
 
   SampleSums sums(width, height);
   const double emitted = double(passes) * double(options.photons_per_pass);

@@ -68,34 +68,36 @@ SampleSums render_with_splats(const Camera& camera, const RenderSettings& settin
   const PixelFilter filter(settings.filter);
   SampleSums sums(width, height);
   std::vector<DVec3> splatted(size_t(window.area()), DVec3(0.0));
+  // What each tile keeps between its pixels: the splats of this pass, and the two subpaths' vertices.
+  struct TileScratch {
+    std::vector<Splat> splats;
+    std::vector<PathVertex> camera_path, light_path;
+  };
   const int tiles_x = (width + kTileSize - 1) / kTileSize, tiles_y = (height + kTileSize - 1) / kTileSize;
-  std::vector<std::vector<Splat>> tile_splats(size_t(tiles_x) * size_t(tiles_y));
-  const int per_pass = samples_per_pass(window.area(), settings.spp);
-  for (int begin = 0; begin < settings.spp && !interrupt_requested(); begin += per_pass) {
-    const int end = std::min(settings.spp, begin + per_pass);
-    parallel_for_tiles(width, height, threads, [&](const PixelRect& tile) {
-      std::vector<Splat>& splats = tile_splats[size_t(tile.y0 / kTileSize) * size_t(tiles_x) + size_t(tile.x0 / kTileSize)];
-      splats.clear();
-      std::vector<PathVertex> camera_path, light_path;
-      std::uint64_t tile_samples = 0;
-      for (int ty = tile.y0; ty < tile.y1; ++ty)
-        for (int tx = tile.x0; tx < tile.x1; ++tx) {
-          Color sum = sums.sum(tx, ty);
-          const int added = add_pixel_samples<Rng>(
-              camera, filter, settings, window.x0 + tx, window.y0 + ty, begin, end,
-              [&](const Ray& ray, Rng& rng) { return guard(sample(ray, rng, camera_path, light_path, splats)); }, sum);
-          sums.set(tx, ty, sum, sums.count(tx, ty) + std::uint32_t(added));
-          tile_samples += std::uint64_t(added);
+  std::vector<TileScratch> tiles(size_t(tiles_x) * size_t(tiles_y));
+  render_in_passes(
+      width, height, settings.spp, samples_per_pass(window.area(), settings.spp), threads, progress,
+      [&](const PixelRect& tile, int x, int y, const PixelPass& pass) {
+        TileScratch& t = tiles[size_t(tile.y0 / kTileSize) * size_t(tiles_x) + size_t(tile.x0 / kTileSize)];
+        Color sum = sums.sum(x, y);
+        const int added = add_pixel_samples<Rng>(
+            camera, filter, settings, window.x0 + x, window.y0 + y, pass.begin, pass.end,
+            [&](const Ray& ray, Rng& rng) { return guard(sample(ray, rng, t.camera_path, t.light_path, t.splats)); },
+            sum);
+        sums.set(x, y, sum, sums.count(x, y) + std::uint32_t(added));
+        return added;
+      },
+      [&](const PixelPass&) {
+        // The splats, added tile by tile in order: the same sums for any thread count.
+        for (TileScratch& t : tiles) {
+          for (const Splat& splat : t.splats) {
+            const int x = int(splat.film_point.x) - window.x0, y = int(splat.film_point.y) - window.y0;
+            if (x < 0 || x >= width || y < 0 || y >= height) continue;
+            splatted[size_t(y) * size_t(width) + size_t(x)] += DVec3(guard(splat.value));
+          }
+          t.splats.clear();
         }
-      if (progress) progress->advance(tile_samples);
-    });
-    for (const std::vector<Splat>& splats : tile_splats)
-      for (const Splat& splat : splats) {
-        const int x = int(splat.film_point.x) - window.x0, y = int(splat.film_point.y) - window.y0;
-        if (x < 0 || x >= width || y < 0 || y >= height) continue;
-        splatted[size_t(y) * size_t(width) + size_t(x)] += DVec3(guard(splat.value));
-      }
-  }
+      });
   // Pixel j's light-tracing estimate is (P / N_L) times the sum of its splats: one light path per
   // camera sample, each splat's importance counting the whole film (camera_importance.h).
   const double light_paths = double(sums.total_count());
