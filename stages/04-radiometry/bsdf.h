@@ -22,6 +22,9 @@
 //    sphere it integrates to 1 minus the probability that sample() returns nothing.
 //  - Reciprocity, f(wo, wi) = f(wi, wo) for reflection, and energy conservation, the directional
 //    albedo integral f |cos(theta_i)| dwi <= 1 for every wo, hold for every model.
+//  - sample() takes the quantity the path carries (TransportMode), wo being the direction the path
+//    arrived from in either mode. Only refraction tells them apart: its weight is
+//    (eta_outside / eta_inside)^2 times larger for radiance than for importance.
 #pragma once
 
 #include "04-radiometry/lambert.h"
@@ -47,8 +50,15 @@ class Bsdf {
   Color eval(Vec3 wo, Vec3 wi) const {
     return std::visit([&](const auto& m) { return m.eval(wo, wi); }, model_);
   }
-  std::optional<BsdfSample> sample(Vec3 wo, Vec2 u, float u_lobe) const {
-    return std::visit([&](const auto& m) { return m.sample(wo, u, u_lobe); }, model_);
+  std::optional<BsdfSample> sample(Vec3 wo, Vec2 u, float u_lobe, TransportMode mode = TransportMode::radiance) const {
+    return std::visit(
+        [&](const auto& m) {
+          if constexpr (requires { m.sample(wo, u, u_lobe, mode); })
+            return m.sample(wo, u, u_lobe, mode);
+          else
+            return m.sample(wo, u, u_lobe);  // a symmetric model: the same for either mode
+        },
+        model_);
   }
   float pdf(Vec3 wo, Vec3 wi) const {
     return std::visit([&](const auto& m) { return m.pdf(wo, wi); }, model_);
@@ -62,6 +72,8 @@ class Bsdf {
   bool has_lobe_choice() const {
     return std::holds_alternative<PhongBrdf>(model_) || std::holds_alternative<DielectricBsdf>(model_);
   }
+  // The model itself, for make_bsdf's tests: they check what it chose without evaluating it, which
+  // would make them depend on each model's task.
   const Model& model() const { return model_; }
 
  private:

@@ -6,11 +6,6 @@
 
 namespace rt {
 
-ShadingPoint make_shading_point(const LightingScene& scene, const Hit& hit, Vec3 towards_viewer) {
-  const Frame frame = Frame::from_normal(hit.shading_normal);
-  return ShadingPoint{hit, make_bsdf(scene.material(hit), hit), frame, frame.to_local(towards_viewer)};
-}
-
 namespace {
 
 // Le arriving at the shading point along the world direction wi: the front-face emission of the

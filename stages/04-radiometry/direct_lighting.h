@@ -17,8 +17,8 @@
 #pragma once
 
 #include "02-whitted/ray_offset.h"
-#include "04-radiometry/bsdf.h"
 #include "04-radiometry/lighting_scene.h"
+#include "04-radiometry/shading_point.h"
 #include "common/frame.h"
 #include "common/random.h"
 
@@ -31,15 +31,6 @@ struct DirectOptions {
   int max_depth = 5;  // delta (mirror, glass) bounces followed
   OffsetPolicy offset;
 };
-
-// A point where light is reflected: the hit, its BRDF, its shading frame and wo in that frame.
-struct ShadingPoint {
-  Hit hit;
-  Bsdf bsdf;
-  Frame frame;
-  Vec3 wo;  // local, towards the viewer
-};
-ShadingPoint make_shading_point(const LightingScene& scene, const Hit& hit, Vec3 towards_viewer);
 
 // Task stage4.direct.point_lights. Sum over the point lights of f_r I cos(theta_i) / r^2 for each
 // light a shadow ray (spawn_shadow_ray) reaches.

@@ -134,8 +134,8 @@ Color bdpt_sample(const LightingScene& scene, const Camera& camera, const Ray& c
   // One strategy alone needs subpaths no longer than its own (a light subpath of one vertex, the
   // light point, costs no ray).
   WalkSettings camera_walk = options.walk, light_walk = options.walk;
-  camera_walk.mode = Transport::radiance;
-  light_walk.mode = Transport::importance;
+  camera_walk.mode = TransportMode::radiance;
+  light_walk.mode = TransportMode::importance;
   if (!options.only.all()) {
     camera_walk.max_vertices = options.only.t;
     light_walk.max_vertices = std::max(options.only.s, 1);

@@ -13,7 +13,7 @@ void light_tracing_sample(const LightingScene& scene, const Camera& camera, cons
   if (!start) return;
   light_path.push_back(start->origin);
   WalkSettings importance = walk;
-  importance.mode = Transport::importance;
+  importance.mode = TransportMode::importance;
   random_walk(scene, start->ray, start->beta, start->pdf_w, importance, sampler, light_path);
   // The camera "subpath" is the pinhole alone.
   const PathVertex eye = camera_vertex(camera);

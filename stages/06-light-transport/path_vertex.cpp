@@ -66,22 +66,6 @@ Color scattering(const PathVertex& v, Vec3 towards_camera, Vec3 towards_light) {
   return f * (std::abs(glm::dot(v.hit.shading_normal, towards_light)) / cos_geometric);
 }
 
-float importance_correction(const PathVertex& v, Vec3 wo_world, Vec3 wi_world, const BsdfSample& s) {
-  float factor = 1.0f;
-  const Vec3 ns = v.hit.shading_normal, ng = v.hit.normal;
-  if (ns != ng) {
-    const float denominator = std::abs(glm::dot(wo_world, ng)) * std::abs(glm::dot(wi_world, ns));
-    factor = denominator > 0.0f
-                 ? std::abs(glm::dot(wo_world, ns)) * std::abs(glm::dot(wi_world, ng)) / denominator
-                 : 0.0f;
-  }
-  if (const auto* glass = std::get_if<DielectricBsdf>(&v.at->bsdf.model()); glass && s.wi.z < 0.0f) {
-    const float ratio = glass->eta_inside / glass->eta_outside;
-    factor *= ratio * ratio;
-  }
-  return factor;
-}
-
 template <SamplerType S>
 void random_walk(const LightingScene& scene, Ray ray, Color beta, float pdf_w, const WalkSettings& settings, S& sampler,
                  std::vector<PathVertex>& path) {
@@ -105,15 +89,13 @@ void random_walk(const LightingScene& scene, Ray ray, Color beta, float pdf_w, c
 
     const ShadingPoint& at = *path.back().at;
     const float u_lobe = at.bsdf.has_lobe_choice() ? sampler.uniform() : 0.5f;
-    const std::optional<BsdfSample> s = at.bsdf.sample(at.wo, u, u_lobe);
+    const std::optional<BsdfSample> s = at.sample(u, u_lobe, settings.mode);
     if (!s) break;
     const Vec3 wi = at.frame.to_world(s->wi);
     // The density of the way back: the BSDF sampling wo after arriving along wi.
     const float pdf_back = s->delta ? delta_lobe_density(path.back(), -ray.direction) : at.bsdf.pdf(s->wi, at.wo);
     pdf_w = s->delta ? delta_lobe_density(path.back(), wi) : s->pdf;
-    Color weight = s->weight;
-    if (settings.mode == Transport::importance) weight *= importance_correction(path.back(), -ray.direction, wi, *s);
-    beta *= weight;
+    beta *= s->weight;
     PathVertex& previous = path[path.size() - 2];
     previous.pdf_rev = to_area_density(pdf_back, path.back(), previous);
     ray = spawn_ray(*hit, wi, settings.offset);

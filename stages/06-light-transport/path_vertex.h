@@ -26,13 +26,6 @@ namespace rt {
 
 enum class VertexKind { camera, light, surface };
 
-// Which quantity a subpath carries: radiance towards the camera (camera subpaths, as a path tracer)
-// or importance towards the light (light subpaths, as photons carry flux). A BSDF's sampling weight
-// is written for radiance; two things differ for importance (Veach's thesis, chapter 5): refraction
-// does not squeeze flux by (eta_t / eta_i)^2, and a shading normal's cosines enter the other way
-// round.
-enum class Transport { radiance, importance };
-
 struct PathVertex {
   VertexKind kind = VertexKind::surface;
   // Point, geometric normal (turned to the side the subpath arrived from; a light's front; the
@@ -102,14 +95,8 @@ float light_emission_pdf(const LightingScene& scene, const PathVertex& v, const 
 // section 5.3). Equal to f_s where the two normals agree.
 Color scattering(const PathVertex& v, Vec3 towards_camera, Vec3 towards_light);
 
-// The factor that turns a BSDF sample's radiance weight into the importance weight when the walk
-// leaves v in `wi_world` after arriving from `wo_world` (both pointing away from v): the shading
-// normal's correction |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|), and for glass's refraction
-// (eta_inside / eta_outside)^2, which undoes the radiance squeeze in the sample's weight.
-float importance_correction(const PathVertex& v, Vec3 wo_world, Vec3 wi_world, const BsdfSample& s);
-
 struct WalkSettings {
-  Transport mode = Transport::radiance;
+  TransportMode mode = TransportMode::radiance;  // camera subpaths carry radiance, light subpaths importance
   int max_vertices = kMaxSubpathVertices;  // the subpath, its start included
   int roulette_start = 4;                  // bounces before Russian roulette (stage 5's rule)
   OffsetPolicy offset;
@@ -118,9 +105,10 @@ struct WalkSettings {
 // Task stage6.bdpt.random_walk. Extends the subpath `path` (its last vertex the camera or a light)
 // along `ray`, which left that vertex with solid-angle density pdf_w carrying throughput `beta`:
 // at each surface hit, a vertex with pdf_fwd (pdf_w converted to area), then a BSDF sample for
-// the next direction, whose reverse density sets the previous vertex's pdf_rev; delta lobes give
-// both directions delta_lobe_density. Russian roulette as in stage 5 (survival_probability on the throughput relative
-// to the walk's start), at most settings.max_vertices vertices. Ends where a ray leaves the scene.
+// the next direction (ShadingPoint::sample, for the quantity settings.mode carries), whose reverse
+// density sets the previous vertex's pdf_rev; delta lobes give both directions delta_lobe_density.
+// Russian roulette as in stage 5 (survival_probability on the throughput relative to the walk's
+// start), at most settings.max_vertices vertices. Ends where a ray leaves the scene.
 template <SamplerType S>
 void random_walk(const LightingScene& scene, Ray ray, Color beta, float pdf_w, const WalkSettings& settings, S& sampler,
                  std::vector<PathVertex>& path);

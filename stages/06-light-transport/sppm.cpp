@@ -98,7 +98,7 @@ void trace_photon(const LightingScene& scene, const SppmOptions& options, Rng& r
   if (!start) return;
   path.push_back(start->origin);
   WalkSettings walk = options.walk;
-  walk.mode = Transport::importance;
+  walk.mode = TransportMode::importance;
   random_walk(scene, start->ray, start->beta, start->pdf_w, walk, rng, path);
   for (size_t i = 2; i < path.size(); ++i) {
     const PathVertex& v = path[i];

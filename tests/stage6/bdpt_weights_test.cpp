@@ -43,7 +43,7 @@ Subpaths subpaths(const LoadedScene& s, std::uint64_t k, int max_vertices = 6) {
   random_walk(s.scene, ray, Color(1.0f), camera_direction_pdf(s.camera, ray.direction), walk, rng, p.camera);
   if (const std::optional<LightSubpathStart> start = start_light_subpath(s.scene, rng, walk.offset)) {
     p.light.push_back(start->origin);
-    walk.mode = Transport::importance;
+    walk.mode = TransportMode::importance;
     random_walk(s.scene, start->ray, start->beta, start->pdf_w, walk, rng, p.light);
   }
   return p;
@@ -152,7 +152,7 @@ TEST(RandomWalk, RouletteStartsAfterRouletteStartBounces) {
     for (const int start : {1, 2, 4}) {
       WalkSettings walk;
       walk.roulette_start = start;
-      walk.mode = light ? Transport::importance : Transport::radiance;
+      walk.mode = light ? TransportMode::importance : TransportMode::radiance;
       // (length, walks of that length), shortest first; nothing where a light subpath could not start.
       const auto histogram = testing::subject([&]() -> std::optional<std::vector<std::pair<std::uint64_t, int>>> {
         std::map<size_t, int> counted;
@@ -183,36 +183,6 @@ TEST(RandomWalk, RouletteStartsAfterRouletteStartBounces) {
       EXPECT_NEAR(lengths.begin()->second, 400.0 * (1.0 - survive), 5.0 * std::sqrt(400.0 * survive * (1.0 - survive)))
           << what << ": the walks that end at the first roulette";
     }
-}
-
-TEST(ImportanceCorrection, GlassRefractionCarriesFluxUnsqueezed) {
-  PathVertex v;
-  v.hit.normal = v.hit.shading_normal = Vec3(0.0f, 0.0f, 1.0f);
-  v.at = ShadingPoint{v.hit, Bsdf(DielectricBsdf{1.0f, 1.5f}), Frame::from_normal(v.hit.normal), Vec3(0, 0, 1)};
-  const BsdfSample refracted{Vec3(0.0f, 0.0f, -1.0f), Color(1.0f / 2.25f), 0.96f, true};
-  const BsdfSample reflected{Vec3(0.0f, 0.0f, 1.0f), Color(1.0f), 0.04f, true};
-  // Radiance into glass of index 1.5 is squeezed by (1 / 1.5)^2; flux is not: the factor undoes it.
-  EXPECT_NEAR(RT_GRADED(importance_correction)(v, Vec3(0, 0, 1), Vec3(0, 0, -1), refracted), 2.25f, 1e-5f);
-  EXPECT_EQ(RT_GRADED(importance_correction)(v, Vec3(0, 0, 1), Vec3(0, 0, 1), reflected), 1.0f);
-  // A shading normal tilted from the geometric one: |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|).
-  PathVertex tilted;
-  tilted.hit.normal = Vec3(0.0f, 0.0f, 1.0f);
-  tilted.hit.shading_normal = glm::normalize(Vec3(0.3f, 0.0f, 1.0f));
-  tilted.at = ShadingPoint{tilted.hit, Bsdf(LambertBrdf{Color(0.5f)}), Frame::from_normal(tilted.hit.shading_normal),
-                           Vec3(0, 0, 1)};
-  const Vec3 wo = glm::normalize(Vec3(1.0f, 0.0f, 1.0f)), wi = glm::normalize(Vec3(-0.2f, 0.5f, 1.0f));
-  const BsdfSample diffuse{Vec3(0, 0, 1), Color(0.5f), 0.3f, false};
-  const float expected = std::abs(glm::dot(wo, tilted.hit.shading_normal)) * std::abs(wi.z) /
-                         (std::abs(wo.z) * std::abs(glm::dot(wi, tilted.hit.shading_normal)));
-  EXPECT_NEAR(RT_GRADED(importance_correction)(tilted, wo, wi, diffuse), expected, 1e-5f);
-  EXPECT_NE(expected, 1.0f);
-  // Only the cosines' magnitudes enter (Veach's thesis, eq. 5.19), so the factor is the same
-  // whichever way either direction points: a walk that hands it the incoming ray's direction in
-  // place of the way back (a flipped sign) computes the same factor, and no image can tell.
-  EXPECT_EQ(RT_GRADED(importance_correction)(tilted, -wo, wi, diffuse),
-            RT_GRADED(importance_correction)(tilted, wo, wi, diffuse));
-  EXPECT_EQ(RT_GRADED(importance_correction)(tilted, wo, -wi, diffuse),
-            RT_GRADED(importance_correction)(tilted, wo, wi, diffuse));
 }
 
 // A full path x_0 (camera) ... x_k (on a light), each vertex with its density from either side.
