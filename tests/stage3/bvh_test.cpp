@@ -517,38 +517,6 @@ TEST(BvhLayout, PacksComeOutTheSameOnAnyNumberOfThreads) {
   }
 }
 
-// Every index once, in as many chunks as threads, except where a chunk would hold under 1,024.
-TEST(BvhLayout, ChunksCoverEveryIndexOnce) {
-  for (const size_t count : {0, 1, 2, 5, 1000, 2048, 5000, 100003})
-    for (const int threads : {1, 2, 3, 8}) {
-      std::vector<std::atomic<int>> visits(count);
-      std::atomic<int> chunks{0};
-      for_each_chunk(count, threads, [&](size_t begin, size_t end) {
-        ++chunks;
-        for (size_t i = begin; i < end; ++i) ++visits[i];
-      });
-      for (size_t i = 0; i < count; ++i) EXPECT_EQ(visits[i], 1) << count << " indices, " << threads << " threads, index " << i;
-      EXPECT_EQ(chunks, std::max<size_t>(1, std::min(size_t(threads), count / 1024))) << count << " indices, " << threads << " threads";
-    }
-}
-
-// Small arrays start on a cache line; from 2 MiB on, on a huge page's boundary. A vector that grows
-// across the threshold frees each block the way it was allocated (the sanitizers check the pairing).
-TEST(BvhLayout, LargeArraysStartOnHugePageBoundaries) {
-  CacheLineAllocator<WideBvhNode> allocator;
-  const size_t huge = CacheLineAllocator<WideBvhNode>::kHugePage / sizeof(WideBvhNode);
-  for (const size_t n : {size_t(1), size_t(7), huge - 1, huge, 3 * huge + 5}) {
-    WideBvhNode* p = allocator.allocate(n);
-    const auto address = reinterpret_cast<std::uintptr_t>(p);
-    EXPECT_EQ(address % (n >= huge ? CacheLineAllocator<WideBvhNode>::kHugePage : 64), 0u) << n << " nodes";
-    p[n - 1] = WideBvhNode{};  // the whole block is usable
-    allocator.deallocate(p, n);
-  }
-  std::vector<WideBvhNode, CacheLineAllocator<WideBvhNode>> nodes;
-  for (size_t i = 0; i < 2 * huge; ++i) nodes.push_back(WideBvhNode{});
-  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(nodes.data()) % CacheLineAllocator<WideBvhNode>::kHugePage, 0u);
-}
-
 // The SAH prices a leaf of up to four primitives as one pack test only where leaves become packs.
 TEST(BvhLayout, LeafCostIsOnePackTestForUpToFourPrimitives) {
   const BvhBuildOptions packed{.wide = true}, slots{.wide = true, .triangle_packs = false}, binary{};
