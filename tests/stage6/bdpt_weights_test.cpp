@@ -185,6 +185,30 @@ TEST(RandomWalk, RouletteStartsAfterRouletteStartBounces) {
     }
 }
 
+// A walk stops at settings.max_vertices vertices, its start included, and one asked for no more
+// than the path already has adds nothing (BDPT's one-strategy renders ask for exactly that: a light
+// subpath of its start alone). The glowing room is closed, so every walk runs to its length.
+TEST(RandomWalk, NeverLongerThanMaxVertices) {
+  static const LoadedScene room(parse_scene(testing::kGlowingRoom, "glowing-room.json"), 8, 8);
+  for (const int max_vertices : {1, 2, 3, 5}) {
+    const std::vector<std::uint64_t> lengths = testing::subject([&] {
+      std::vector<std::uint64_t> out;
+      for (std::uint64_t k = 0; k < 20; ++k) {
+        Rng rng(93, 0, k);
+        WalkSettings walk;
+        walk.max_vertices = max_vertices;
+        walk.roulette_start = 100;
+        std::vector<PathVertex> path{camera_vertex(room.camera)};
+        const Ray ray = generate_camera_ray(room.camera, Vec2(rng.uniform() * 8.0f, rng.uniform() * 8.0f));
+        random_walk(room.scene, ray, Color(1.0f), camera_direction_pdf(room.camera, ray.direction), walk, rng, path);
+        out.push_back(path.size());
+      }
+      return out;
+    });
+    for (const std::uint64_t n : lengths) EXPECT_EQ(n, std::uint64_t(max_vertices)) << "max_vertices " << max_vertices;
+  }
+}
+
 // A full path x_0 (camera) ... x_k (on a light), each vertex with its density from either side.
 struct FullPath {
   std::vector<const PathVertex*> x;
