@@ -1,8 +1,8 @@
 // The project's threads, in one place. The tile scheduler splits an image into square tiles and
 // hands them to worker threads from a shared counter, so fast tiles do not wait for slow ones;
-// for_each_chunk cuts an index range into one contiguous chunk per thread (a BVH build's chunks). Which thread renders which tile varies
-// from run to run; renders stay deterministic because random numbers depend only on
-// (seed, pixel, sample), see common/random.h.
+// for_each_chunk cuts an index range into one contiguous chunk per thread (a BVH build's chunks).
+// Which thread renders which tile varies from run to run; renders stay deterministic because random
+// numbers depend only on (seed, pixel, sample), see common/random.h.
 #pragma once
 
 #include "common/image.h"

@@ -90,8 +90,9 @@ inline int samples_per_pass(std::int64_t pixels, int spp) {
 // samples_per_pass of each pixel a pass. Each pixel adds its samples in the order k = 0, 1, 2, ...
 // whichever thread takes its tile in each pass, so the image is the same bit for bit for any thread
 // count and any pass size. `progress`, if given, is advanced by the samples each tile finishes
-// (fewer than asked for after a stop request, which is how the program knows how much it has). `S` makes each sample's
-// numbers from (seed, pixel, sample index): Rng (independent random numbers) unless a later stage passes another.
+// (fewer than asked for after a stop request, which is how the program knows how much it has).
+// `S` makes each sample's numbers from (seed, pixel, sample index): Rng (independent random
+// numbers) unless a later stage passes another.
 template <SamplerType S = Rng, class RadianceFn>
 SampleSums render_samples(const Camera& camera, const RenderSettings& settings, int threads, RadianceFn&& radiance,
                           ProgressBar* progress = nullptr) {
