@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Makes the student starter tree: this repository with every task's solution cut out.
 
-    tools/make_starter.py DEST [--stages 1-6] [--others strip|keep] [--force]
+    tools/make_starter.py DEST [--stages 1-7] [--others strip|keep] [--force]
 
 Each task region (docs/solution-markers.md) of the chosen stages keeps its markers, and its solution
 becomes its placeholder (which compiles, says "TODO: task <id> is not implemented yet" once, and
@@ -132,8 +132,8 @@ def make_starter(root, dest, stages):
 def main():
     parser = argparse.ArgumentParser(description="Make the student starter tree (solutions cut out).")
     parser.add_argument("dest", help="folder to create")
-    parser.add_argument("--stages", type=parse_stages, default=set(range(1, 7)),
-                        help="stages whose tasks are stripped, e.g. 1-6 (default) or 3-5")
+    parser.add_argument("--stages", type=parse_stages, default=set(range(1, 8)),
+                        help="stages whose tasks are stripped, e.g. 1-7 (default) or 3-5")
     parser.add_argument("--others", choices=["strip", "keep"], default="strip",
                         help="the other stages' tasks: strip (default) or keep solved")
     parser.add_argument("--force", action="store_true", help="replace DEST if it exists")

@@ -396,7 +396,7 @@ def write_doc(lines):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--stages", type=int, nargs="+", default=[1, 2, 3, 4, 5, 6])
+    parser.add_argument("--stages", type=int, nargs="+", default=[1, 2, 3, 4, 5, 6, 7])
     parser.add_argument("--sample", type=int, help="test a fixed-seed sample of this many mutants per stage")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--work", default="/tmp/rt-mutation")

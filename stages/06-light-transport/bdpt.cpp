@@ -177,5 +177,8 @@ Color bdpt_sample(const LightingScene& scene, const Camera& camera, const Ray& c
 
 template Color bdpt_sample(const LightingScene&, const Camera&, const Ray&, const BdptOptions&, Rng&,
                            std::vector<PathVertex>&, std::vector<PathVertex>&, std::vector<Splat>&);
+// Any sampler behind the interface: stage 7's primary sample space.
+template Color bdpt_sample(const LightingScene&, const Camera&, const Ray&, const BdptOptions&, Sampler&,
+                           std::vector<PathVertex>&, std::vector<PathVertex>&, std::vector<Splat>&);
 
 }  // namespace rt

@@ -108,5 +108,6 @@ std::optional<LightSubpathStart> start_light_subpath(const LightingScene& scene,
 }
 
 template std::optional<LightSubpathStart> start_light_subpath(const LightingScene&, Rng&, const OffsetPolicy&);
+template std::optional<LightSubpathStart> start_light_subpath(const LightingScene&, Sampler&, const OffsetPolicy&);
 
 }  // namespace rt

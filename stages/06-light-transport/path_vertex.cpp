@@ -114,5 +114,8 @@ void random_walk(const LightingScene& scene, Ray ray, Color beta, float pdf_w, c
 }
 
 template void random_walk(const LightingScene&, Ray, Color, float, const WalkSettings&, Rng&, std::vector<PathVertex>&);
+// Any sampler behind the interface: stage 7's primary sample space.
+template void random_walk(const LightingScene&, Ray, Color, float, const WalkSettings&, Sampler&,
+                          std::vector<PathVertex>&);
 
 }  // namespace rt

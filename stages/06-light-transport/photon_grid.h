@@ -22,6 +22,7 @@ struct Photon {
   Vec3 position;
   Vec3 wi;      // unit, world: back towards where the photon came from
   Color power;  // the flux it carries, times the number of photons emitted (the vertex's beta)
+  std::uint32_t source = 0;  // the light vertex it was made from, for a caller that keeps them (stage 7)
 };
 
 class PhotonGrid {

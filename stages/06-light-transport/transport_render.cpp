@@ -18,23 +18,30 @@ const char* method_name(TransportMethod method) {
   return "?";
 }
 
-void check_renderable(const SceneDescription& description, const LightingScene& scene, const Camera& camera,
-                      TransportMethod method) {
-  if (method == TransportMethod::pt) return;
-  const std::string what = std::string("--method ") + method_name(method);
+void check_light_paths_renderable(const SceneDescription& description, const LightingScene& scene, const Camera& camera,
+                                  const std::string& what, const std::string& path_tracer,
+                                  const std::string& lens_alternative) {
   if (!scene.lights().empty())
     throw InputError(description.source + ": " + what +
                      " starts light paths on area emitters, and a point light has no area: make it a small "
-                     "sphere or quad, or render with --method pt");
+                     "sphere or quad, or render with " +
+                     path_tracer);
   if (scene.environment())
     throw InputError(description.source + ": " + what +
-                     " does not start light paths on an environment light: render it with --method pt");
+                     " does not start light paths on an environment light: render it with " + path_tracer);
   if (scene.emitters().empty())
     throw InputError(description.source + ": " + what + " needs an area emitter to start light paths on");
-  if (method != TransportMethod::sppm && camera.aperture_radius > 0.0f)
+  if (!lens_alternative.empty() && camera.aperture_radius > 0.0f)
     throw InputError(description.source + ": " + what +
-                     " connects light paths to a pinhole, and this camera has an aperture: render it with "
-                     "--method pt or sppm");
+                     " connects light paths to a pinhole, and this camera has an aperture: render it with " +
+                     lens_alternative);
+}
+
+void check_renderable(const SceneDescription& description, const LightingScene& scene, const Camera& camera,
+                      TransportMethod method) {
+  if (method == TransportMethod::pt) return;
+  check_light_paths_renderable(description, scene, camera, std::string("--method ") + method_name(method),
+                               "--method pt", method == TransportMethod::sppm ? "" : "--method pt or sppm");
 }
 
 void check_transport_fits(const SceneDescription& description, const RenderSettings& settings,

@@ -33,6 +33,13 @@ struct TransportOptions {
 // so the camera may have no aperture.
 void check_renderable(const SceneDescription& description, const LightingScene& scene, const Camera& camera,
                       TransportMethod method);
+// The same rule for any method that starts paths on lights (`what`, as the user asked for it, e.g.
+// "--method bdpt"), naming `path_tracer` as what renders the scene instead, and for a method that
+// connects to a pinhole, `lens_alternative` as what renders a camera with an aperture (empty: the
+// method takes a lens).
+void check_light_paths_renderable(const SceneDescription& description, const LightingScene& scene, const Camera& camera,
+                                  const std::string& what, const std::string& path_tracer,
+                                  const std::string& lens_alternative);
 
 // Throws InputError, before the scene is built, for a render `options.method` could not hold within
 // `limit`: every stage's kBytesPerPixel (common/memory_limit.h) and what the method adds, each

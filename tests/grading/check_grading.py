@@ -138,6 +138,7 @@ def check_starter_outcomes(outcomes, problems):
 
 def check_full_and_bugs(work, problems):
     full, full_outcomes = grade(ROOT, work / "full-report", work / "bug-grade")
+    all_stages = sorted({g["stage"] for g in full_outcomes["groups"]})
     possible = sum(t["max_score"] for t in full["tests"])
     if full["score"] != possible:
         problems.append(f"the full tree scores {full['score']} of {possible}: {sorted(failures_and_points(full_outcomes))}")
@@ -151,15 +152,21 @@ def check_full_and_bugs(work, problems):
             problems.append(f"{bug['file']}: the line to break for {bug['task']} is not there once")
             continue
         path.write_text(text.replace(bug["old"], bug["new"]))
-        # The full tree's work folder: only what the bug touches is rebuilt.
-        results, outcomes = grade(tree, work / "bug-report", work / "bug-grade")
+        # The full tree's work folder: only what the bug touches is rebuilt. Only the bug's stage and
+        # the later ones are graded: an earlier stage's test programs do not link its code (arrows
+        # point backwards only), so they fare as in the full tree.
+        stages = [s for s in all_stages if s >= int(bug["task"].split(".")[0].removeprefix("stage"))]
+        results, outcomes = grade(tree, work / "bug-report", work / "bug-grade",
+                                  *[flag for s in stages for flag in ("--stage", str(s))])
         failed = failures_and_points(outcomes)
         if not failed:
             problems.append(f"{bug['task']}: the planted bug loses no points")
         for name in sorted(failed):
             if not any(fnmatch.fnmatchcase(name, g) for g in bug["covered_by"]):
                 problems.append(f"{bug['task']}: {name} failed, but is not among the tests that cover the task")
-        lost, expected = full["score"] - results["score"], sum(failed.values())
+        full_score = sum(g["score"] for g in full_outcomes["groups"] if g["stage"] in stages) + \
+            sum(r["score"] for r in full_outcomes["renders"] if r["stage"] in stages)
+        lost, expected = full_score - results["score"], sum(failed.values())
         if abs(lost - expected) > 0.02:
             problems.append(f"{bug['task']}: lost {lost:g} points, but its failed tests are worth {expected:g}")
         print(f"check_grading: {bug['task']}: {len(failed)} tests failed, {lost:g} points lost", flush=True)

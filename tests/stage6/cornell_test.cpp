@@ -3,6 +3,7 @@
 // region by region, and the image the same bit for bit for any thread count.
 #include "common/image_io.h"
 
+#include "stage6/cornell_regions.h"
 #include "stage6/loaded_scene.h"
 #include "stage6/transport_estimates.h"
 #include "support/test_support.h"
@@ -12,31 +13,22 @@
 namespace rt {
 namespace {
 
-// The 256 x 256 reference averaged down to the tests' 64 x 64 film.
-const Image& cornell_reference() {
-  static const Image reference = downsample(read_pfm(testing::source_path("assets/references/cornell-box-256.pfm")), 4);
-  return reference;
-}
-
-// The regions of stage 5's Cornell test, each inside one surface.
-const PixelRect kRegions[] = {{36, 14, 46, 24}, {20, 57, 30, 61}, {4, 16, 11, 40}, {53, 16, 60, 40}, {14, 2, 50, 6}};
-const char* const kRegionNames[] = {"back wall", "floor between the blocks", "red wall", "green wall", "ceiling"};
-
 // Every region's mean within 3 standard errors (plus `bias_allowance` of the reference, for a
 // biased method) of the reference's.
 void expect_agreement(const TransportOptions& options, int spp, int runs, double bias_allowance) {
   const testing::LoadedScene& c = testing::cornell_box<64, 64>();
-  const std::vector<RegionEstimate> estimates = region_estimates(
-      [&](std::uint64_t seed) { return render_method(c.scene, c.camera, options, spp, seed); }, kRegions, runs);
-  for (size_t r = 0; r < std::size(kRegions); ++r) {
-    const double expected = grey(mean_over(cornell_reference(), kRegions[r]));
+  const std::vector<RegionEstimate> estimates =
+      region_estimates([&](std::uint64_t seed) { return render_method(c.scene, c.camera, options, spp, seed); },
+                       testing::kCornellRegions, runs);
+  for (size_t r = 0; r < std::size(testing::kCornellRegions); ++r) {
+    const double expected = grey(mean_over(testing::cornell_reference_64(), testing::kCornellRegions[r]));
     EXPECT_NEAR(estimates[r].mean, expected, 3.0 * estimates[r].standard_error + bias_allowance * expected)
-        << method_name(options.method) << ", " << kRegionNames[r] << ": standard error "
+        << method_name(options.method) << ", " << testing::kCornellRegionNames[r] << ": standard error "
         << estimates[r].standard_error;
     // The error bar is a real one: neither zero (a render that ignored its seed) nor so wide that
     // any answer passes.
-    EXPECT_GT(estimates[r].standard_error, 0.0) << kRegionNames[r];
-    EXPECT_LT(estimates[r].standard_error, 0.02 * expected) << kRegionNames[r];
+    EXPECT_GT(estimates[r].standard_error, 0.0) << testing::kCornellRegionNames[r];
+    EXPECT_LT(estimates[r].standard_error, 0.02 * expected) << testing::kCornellRegionNames[r];
   }
 }
 

@@ -1,0 +1,134 @@
+// stage7: renders a scene by vertex connection and merging, by one of the methods it contains
+// (--mode bpt, ppm, lt), or by Metropolis light transport (--mode mlt, pssmlt).
+#include "01-ray-casting/render.h"
+#include "06-light-transport/transport_render.h"
+#include "07-vcm-mlt/mlt.h"
+#include "07-vcm-mlt/vcm.h"
+#include "common/error.h"
+#include "common/sample_batch.h"
+#include "common/stage_program.h"
+
+#include <utility>
+#include <vector>
+
+namespace {
+
+enum class Mode { vcm, bpt, ppm, lt, mlt, pssmlt };
+const std::pair<const char*, Mode> kModes[] = {{"vcm", Mode::vcm}, {"bpt", Mode::bpt}, {"ppm", Mode::ppm},
+                                               {"lt", Mode::lt},   {"mlt", Mode::mlt}, {"pssmlt", Mode::pssmlt}};
+const char* name_of(Mode mode) {
+  for (const auto& [name, m] : kModes)
+    if (m == mode) return name;
+  return "?";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace rt;
+  CommonOptions options;
+  Mode mode = Mode::vcm;
+  VcmOptions vcm;
+  MltOptions mlt;
+  std::optional<float> radius, alpha;
+  int mutations = 0, chains = 0, bootstrap = 0;  // 0: not given
+  std::optional<float> large_step;
+
+  return run_stage_program(
+      argc, argv, "stage7", "Stage 7: vertex connection and merging, and Metropolis light transport", options,
+      [&](StageFlags& flags) {
+        std::vector<std::pair<std::string, Mode>> modes;
+        for (const auto& [name, m] : kModes) modes.emplace_back(name, m);
+        flags.add_choice("--mode", mode, modes,
+                         "vcm (connections and merges, the default), bpt (connections only: bidirectional path "
+                         "tracing), ppm (merges only: progressive photon mapping), lt (light tracing), mlt "
+                         "(multiplexed Metropolis light transport over BDPT's strategies) or pssmlt (Kelemen's "
+                         "Metropolis over whole BDPT samples); for vcm, bpt, ppm and lt --spp is the number of "
+                         "iterations, each one light subpath and one camera subpath per pixel");
+        flags.add("--radius", radius,
+                  "vcm, ppm: the first iteration's merge radius in scene units (default: one pixel footprint at "
+                  "the median distance of what the camera sees)",
+                  finite_in(1e-30, 1e30));
+        flags.add("--alpha", alpha,
+                  "vcm, ppm: the radius shrinks as r_i = r_1 i^((alpha - 1) / 2), alpha in (0, 1] (default 0.75)",
+                  finite_in(1e-6, 1.0));
+        flags.add("--mutations-per-pixel", mutations,
+                  "mlt, pssmlt: the chains' steps in all, per pixel (default 100; replaces --spp)",
+                  decimal_in(1, 1000000));
+        flags.add("--large-step", large_step, "mlt, pssmlt: the probability of a large step (default 0.3)",
+                  finite_in(0.0, 1.0));
+        flags.add("--chains", chains, "mlt, pssmlt: independent Markov chains (default 1024)", decimal_in(1, 1000000));
+        flags.add("--bootstrap", bootstrap,
+                  "mlt, pssmlt: independent samples estimating the image's brightness and the chains' starts "
+                  "(per path depth for mlt; default 100000)",
+                  decimal_in(1, 100000000));
+        flags.add_max_depth(options, "mlt: the deepest path a chain may take, in bounces");
+        flags.add("--roulette-start", vcm.walk.roulette_start,
+                  "Bounces before Russian roulette may end a subpath (default 4; not mlt, whose subpaths have the "
+                  "length their strategy asks for)",
+                  decimal_in(0, 1000));
+      },
+      [&] {
+        const bool metropolis = mode == Mode::mlt || mode == Mode::pssmlt;
+        const std::string what = std::string("--mode ") + name_of(mode);
+        const auto refuse = [&](bool given, const char* flag, const char* whose) {
+          if (given) throw UsageError(std::string(flag) + " is for " + whose + ", not " + what);
+        };
+        refuse((radius || alpha) && mode != Mode::vcm && mode != Mode::ppm, radius ? "--radius" : "--alpha",
+               "--mode vcm and ppm");
+        refuse(!metropolis && (mutations || large_step || chains || bootstrap),
+               mutations    ? "--mutations-per-pixel"
+               : large_step ? "--large-step"
+               : chains     ? "--chains"
+                            : "--bootstrap",
+               "--mode mlt and pssmlt");
+        refuse(mode != Mode::mlt && options.max_depth.has_value(), "--max-depth",
+               "--mode mlt (every other mode ends paths by Russian roulette)");
+        if (options.sample_range || options.crop || is_batch_path(options.out))
+          throw UsageError(what +
+                           ": light paths land anywhere on the film, merge radii shrink with every iteration and "
+                           "chains wander over the whole image, so it cannot be rendered in batches or windows: "
+                           "render it whole (stage5 can)");
+        if (radius) vcm.initial_radius = *radius;
+        if (alpha) vcm.alpha = *alpha;
+        mlt.multiplexed = mode == Mode::mlt;
+        if (mutations) mlt.mutations_per_pixel = mutations;
+        if (large_step) mlt.large_step = *large_step;
+        if (chains) mlt.chains = chains;
+        if (bootstrap) mlt.bootstrap = bootstrap;
+        mlt.roulette_start = vcm.walk.roulette_start;
+        const SceneDescription description = load_scene(options.scene);
+        RenderSettings settings = options.settings_for(description);
+        if (metropolis) settings.spp = mlt.mutations_per_pixel;  // the progress bar counts steps
+        mlt.max_depth = settings.max_depth;
+        check_vcm_fits(description, settings, memory_limit());
+        if (settings.filter != PixelFilterType::box)
+          throw UsageError(
+              "--filter: stage7 uses the box filter (a splat lands in one pixel); other filters, from "
+              "--filter or the scene, need stage5");
+        const LightingScene scene(description);
+        const Camera camera(description.camera, settings.width, settings.height);
+        check_light_paths_renderable(description, scene, camera, what, "stage6 --method pt",
+                                     "stage6 --method pt or sppm");
+        if (!metropolis) vcm.mode = VcmMode(int(mode));
+        if (!metropolis && techniques_of(vcm.mode).merge) {
+          if (!(vcm.initial_radius > 0.0f)) vcm.initial_radius = default_merge_radius(scene, camera);
+          std::printf("stage7: merge radius %.4g at the first iteration, shrinking as i^%.3g\n", vcm.initial_radius,
+                      0.5 * (vcm.alpha - 1.0));
+        }
+        SampleGuard guard;
+        MltReport report;
+        render_with_progress_and_write(
+            "stage7", options, description, settings, PixelMeaning::radiance, [&](ProgressBar* progress) {
+              return metropolis ? render_mlt(scene, camera, settings, mlt, options.threads, guard, progress, &report)
+                                : render_vcm(scene, camera, settings, vcm, options.threads, guard, progress);
+            });
+        if (metropolis)
+          std::printf("stage7: b = %.4g +- %.2g (bootstrap), %lld steps, %.1f %% accepted\n", report.b,
+                      report.b_standard_error, static_cast<long long>(report.mutations),
+                      report.mutations > 0 ? 100.0 * double(report.accepted) / double(report.mutations) : 0.0);
+        if (guard.dropped() > 0)
+          std::printf("stage7: %llu samples had NaN, infinite or negative radiance and were counted as black\n",
+                      static_cast<unsigned long long>(guard.dropped()));
+      });
+}
