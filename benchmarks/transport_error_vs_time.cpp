@@ -1,15 +1,19 @@
-// Writes docs/charts/stage6-error-vs-time.csv, the data behind docs/charts/stage6-error-vs-time.png,
-// and the renders behind the equal-time pictures (IMAGE_FOLDER/stage6-<scene>-<method>.pfm, which
-// tools/plot_charts.py tiles into docs/images/stage6-<scene>.png): stage 6's methods (path
-// tracing, light tracing, BDPT, SPPM) on the four scenes of docs/stage6.md, each at 1, 2, 4, ...
-// samples (passes for SPPM) until a render takes longer than kBudgetSeconds, with the wall time,
+// Writes docs/charts/stageN-error-vs-time.csv, the data behind docs/charts/stageN-error-vs-time.png,
+// and the renders behind the equal-time pictures (IMAGE_FOLDER/stageN-<scene>-<method>.pfm, which
+// tools/plot_charts.py tiles into docs/images/stageN-<scene>.png). Stage 6: its methods (path
+// tracing, light tracing, BDPT, SPPM) on the four scenes of docs/stage6.md; stage 7: those and
+// stage 7's (VCM, multiplexed MLT, Kelemen's PSSMLT) on the same scenes and the room lit through a
+// door ajar. Each method runs at 1, 2, 4, ... samples (SPPM passes, VCM iterations, MLT mutations
+// per pixel) until a render takes longer than kBudgetSeconds, with the wall time,
 // the RMSE over the image against the scene's converged reference (assets/references/README.md)
 // and the RMSE over the region the scene is about (the caustic, the caustic behind the pane, the
 // room beyond the gap; the Cornell box: the whole image). Each picture is the method's last render
 // within kPictureSeconds (column `picture`): about the same time for every method.
-// Run through tools/make-charts.sh (about 10 minutes on 2 cores), or:
-//   build/release/bin/transport_error_vs_time OUT.csv IMAGE_FOLDER
+// Run through tools/make-charts.sh (stage 6 about 10 minutes on 2 cores, stage 7 about 20), or:
+//   build/release/bin/transport_error_vs_time 6|7 OUT.csv IMAGE_FOLDER
 #include "06-light-transport/transport_render.h"
+#include "07-vcm-mlt/mlt.h"
+#include "07-vcm-mlt/vcm.h"
 #include "common/image_io.h"
 #include "common/metrics.h"
 #include "stage6/scene_regions.h"
@@ -33,9 +37,32 @@ struct Setup {
   const char* reference;
   int width, height, downsample;  // the reference is `downsample` times the render's size
   PixelRect region;               // what the scene is about
-  std::vector<TransportMethod> methods;
+  std::vector<std::string> methods;
 };
 
+// The bootstrap of the MLT renders, per path depth for mlt: a fifth of the program's default, so
+// that it costs about as much as one of the first renders of the series (it counts in the time).
+constexpr int kBootstrap = 20000;
+
+// One render of `method` at `spp` samples, passes, iterations or mutations per pixel.
+Image render(const std::string& method, const LightingScene& scene, const Camera& camera,
+             const RenderSettings& settings, int max_depth) {
+  SampleGuard guard;
+  for (const TransportMethod m : kTransportMethods)
+    if (method == method_name(m)) {
+      TransportOptions options;
+      options.method = m;
+      options.path.max_depth = options.sppm.max_depth = max_depth;
+      return render_transport(scene, camera, settings, options, 0, guard).mean();
+    }
+  if (method == "vcm") return render_vcm(scene, camera, settings, VcmOptions{}, 0, guard).mean();
+  MltOptions options;
+  options.multiplexed = method == "mlt";
+  options.mutations_per_pixel = settings.spp;
+  options.bootstrap = kBootstrap;
+  options.max_depth = max_depth;
+  return render_mlt(scene, camera, settings, options, 0, guard).mean();
+}
 
 }  // namespace
 }  // namespace rt::bench
@@ -43,20 +70,44 @@ struct Setup {
 int main(int argc, char** argv) {
   using namespace rt;
   using namespace rt::bench;
-  if (argc != 3 || argv[1][0] == '-') {
-    std::fprintf(stderr, "usage: transport_error_vs_time OUT.csv IMAGE_FOLDER\n");
+  const std::string stage = argc == 4 ? argv[1] : "";
+  if (argc != 4 || (stage != "6" && stage != "7")) {
+    std::fprintf(stderr, "usage: transport_error_vs_time 6|7 OUT.csv IMAGE_FOLDER\n");
     return 2;
   }
   const std::string root = RT_SOURCE_DIR;
-  using M = TransportMethod;
-  const Setup setups[] = {
-      {"cornell-box", "cornell-box.json", "cornell-box-256.pfm", 64, 64, 4, {0, 0, 64, 64}, {M::pt, M::lt, M::bdpt, M::sppm}},
-      {"caustic", "caustic.json", "caustic-128x96.pfm", 128, 96, 1, kCausticRegion, {M::pt, M::lt, M::bdpt, M::sppm}},
-      {"caustic-through-glass", "caustic-through-glass.json", "caustic-through-glass-128x96.pfm", 128, 96, 1,
-       kCausticRegion, {M::pt, M::bdpt, M::sppm}},
-      {"light-through-gap", "light-through-gap.json", "light-through-gap-128x96.pfm", 128, 96, 1, kRoomRegion,
-       {M::pt, M::bdpt, M::sppm}},
+  using Methods = std::vector<std::string>;
+  const bool seven = stage == "7";
+  const auto with_stage7 = [&](Methods m) {
+    if (seven) m.insert(m.end(), {"vcm", "mlt", "pssmlt"});
+    return m;
   };
+  std::vector<Setup> setups = {
+      {"cornell-box",
+       "cornell-box.json",
+       "cornell-box-256.pfm",
+       64,
+       64,
+       4,
+       {0, 0, 64, 64},
+       with_stage7({"pt", "lt", "bdpt", "sppm"})},
+      {"caustic", "caustic.json", "caustic-128x96.pfm", 128, 96, 1, kCausticRegion,
+       with_stage7({"pt", "lt", "bdpt", "sppm"})},
+      {"caustic-through-glass", "caustic-through-glass.json", "caustic-through-glass-128x96.pfm", 128, 96, 1,
+       kCausticRegion, with_stage7({"pt", "bdpt", "sppm"})},
+      {"light-through-gap", "light-through-gap.json", "light-through-gap-128x96.pfm", 128, 96, 1, kRoomRegion,
+       with_stage7({"pt", "bdpt", "sppm"})},
+  };
+  if (seven)
+    setups.push_back({"door-ajar",
+                      "door-ajar.json",
+                      "door-ajar-128x96.pfm",
+                      128,
+                      96,
+                      1,
+                      {0, 0, 128, 96},
+                      with_stage7({"pt", "lt", "bdpt", "sppm"})});
+  argv += 1;
   std::ofstream csv(argv[1]);
   csv << "scene,method,spp,seconds,rmse,region_rmse,picture\n";
   for (const Setup& setup : setups) {
@@ -66,10 +117,7 @@ int main(int argc, char** argv) {
     Image reference = read_pfm(root + "/assets/references/" + setup.reference);
     if (setup.downsample > 1) reference = downsample(reference, setup.downsample);
     std::printf("%s:\n", setup.name);
-    for (const M m : setup.methods) {
-      TransportOptions options;
-      options.method = m;
-      options.path.max_depth = options.sppm.max_depth = description.render.max_depth;
+    for (const std::string& m : setup.methods) {
       struct Row {
         int spp;
         double seconds, error, region;
@@ -83,13 +131,12 @@ int main(int argc, char** argv) {
         settings.height = setup.height;
         settings.spp = spp;
         settings.seed = 1;
-        SampleGuard guard;
         const auto start = Clock::now();
-        const Image image = render_transport(scene, camera, settings, options, 0, guard).mean();
+        const Image image = render(m, scene, camera, settings, description.render.max_depth);
         const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
         rows.push_back({spp, seconds, rmse(image, reference), rmse(image, reference, setup.region)});
-        std::printf("  %-4s %6d spp %8.2f s  RMSE %.4f  region %.4f\n", method_name(m), spp, seconds,
-                    rows.back().error, rows.back().region);
+        std::printf("  %-6s %6d spp %8.2f s  RMSE %.4f  region %.4f\n", m.c_str(), spp, seconds, rows.back().error,
+                    rows.back().region);
         std::fflush(stdout);
         if (seconds <= kPictureSeconds || picture_spp == 0) {
           picture = image;
@@ -98,10 +145,9 @@ int main(int argc, char** argv) {
         if (seconds > kBudgetSeconds) break;
       }
       for (const Row& r : rows)
-        csv << setup.name << "," << method_name(m) << "," << r.spp << "," << r.seconds << "," << r.error << ","
-            << r.region << "," << (r.spp == picture_spp ? 1 : 0) << "\n";
-      write_image(std::filesystem::path(argv[2]) / (std::string("stage6-") + setup.name + "-" + method_name(m) + ".pfm"),
-                  picture);
+        csv << setup.name << "," << m << "," << r.spp << "," << r.seconds << "," << r.error << "," << r.region << ","
+            << (r.spp == picture_spp ? 1 : 0) << "\n";
+      write_image(std::filesystem::path(argv[2]) / ("stage" + stage + "-" + setup.name + "-" + m + ".pfm"), picture);
     }
   }
   return csv.good() ? 0 : 1;

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Checks stage 6's converged references against a second, independent method, 8 x 8 pixels at a time.
+"""Checks stages 6 and 7's converged references against a second, independent method, 8 x 8 pixels at a time.
 
     tools/check_references.py [--build build/release]
 
@@ -13,7 +13,7 @@ block of 8 x 8 pixels the two means must agree within their own errors:
 where m is a block's mean grey value and s its standard error, estimated from the halves: the mean
 of two independent halves a and b has, per pixel, the variance (a - b)^2 / 4 (one degree of freedom
 each, 64 in a block). Under the normal approximation a block fails by chance with probability 7e-6,
-so all the blocks of the three scenes together (about 570) pass with probability 0.996.
+so all the blocks of the four scenes together (about 760) pass with probability 0.995.
 
 Only the pixels that the other method renders completely take part: light tracing (and BDPT, in
 the scene whose reference is SPPM's) cannot see a mirror or glass surface straight from the camera.
@@ -45,6 +45,7 @@ SCENES = [
     ("caustic.json", "caustic-128x96.pfm", "bdpt", "lt"),
     ("light-through-gap.json", "light-through-gap-128x96.pfm", "bdpt", "lt"),
     ("caustic-through-glass.json", "caustic-through-glass-128x96.pfm", "sppm", "bdpt"),
+    ("door-ajar.json", "door-ajar-128x96.pfm", "bdpt", "lt"),
 ]
 
 

@@ -8,7 +8,7 @@ cd "$root"
 cmake --preset release >/dev/null
 cmake --build --preset release --target sphere_precision filter_aliasing offset_vs_scale triangle_leaks stage2_pictures accel_scaling \
   direct_error_vs_time path_error_vs_time environment_sampling adaptive_error_vs_time transport_error_vs_time \
-  stage4 stage5
+  stage4 stage5 stage7
 build/release/bin/sphere_precision docs/charts/stage1-sphere-precision.csv
 build/release/bin/filter_aliasing docs/charts/stage1-filter-aliasing.csv docs/images  # about 15 s
 build/release/bin/offset_vs_scale docs/charts/stage2-offset-vs-scale.csv
@@ -20,7 +20,12 @@ build/release/bin/path_error_vs_time docs/charts/stage5-paths.csv  # about 15 mi
 build/release/bin/environment_sampling docs/charts/stage4-environment.csv  # about 20 s
 build/release/bin/adaptive_error_vs_time docs/charts/stage5-adaptive.csv docs/images  # about 8 minutes
 mkdir -p build/stage6-renders  # the equal-time pictures, tiled into docs/images/stage6-<scene>.png
-build/release/bin/transport_error_vs_time docs/charts/stage6-error-vs-time.csv build/stage6-renders  # about 8 minutes
+build/release/bin/transport_error_vs_time 6 docs/charts/stage6-error-vs-time.csv build/stage6-renders  # about 8 minutes
+mkdir -p build/stage7-renders  # the same with stage 7's methods and the door-ajar scene
+build/release/bin/transport_error_vs_time 7 docs/charts/stage7-error-vs-time.csv build/stage7-renders  # about 18 minutes
+build/release/bin/stage7 --scene assets/scenes/door-ajar.json --width 256 --height 192 --mode mlt \
+  --mutations-per-pixel 64 --bootstrap 20000 --out build/stage7-renders/door-mlt.png \
+  --mutation-map build/stage7-renders/door-map.png >/dev/null  # docs/images/stage7-mutation-map.png
 build/release/bin/stage4 --scene assets/scenes/textures.json --spp 64 --out docs/images/stage4-textures.png
 build/release/bin/stage5 --scene assets/scenes/environment.json --spp 256 --out docs/images/stage5-environment.png
 mkdir -p build/stage4-renders  # the four renders tiled into docs/images/stage4-estimators.png

@@ -319,15 +319,21 @@ def cornell_pictures(root, render):
     plt.close(fig)
 
 TRANSPORT_STYLE = {"pt": ("o-", "tab:grey"), "lt": ("v-", "tab:purple"), "bdpt": ("s-", "tab:blue"),
-                   "sppm": ("D-", "tab:red")}
+                   "sppm": ("D-", "tab:red"), "vcm": ("*-", "tab:green"), "mlt": ("^-", "tab:orange"),
+                   "pssmlt": ("<--", "tab:brown")}
 TRANSPORT_REGION = {"cornell-box": "whole image", "caustic": "the caustic in front of the ball",
                     "caustic-through-glass": "the caustic seen through a pane of glass",
-                    "light-through-gap": "floor and wall left of the gap"}
+                    "light-through-gap": "floor and wall left of the gap", "door-ajar": "whole image"}
+TRANSPORT_TITLE = {6: "Stage 6: error against time where path tracing fails (1, 2, 4, ... spp or SPPM passes)",
+                   7: "Stage 7: every method of stages 6 and 7 (1, 2, 4, ... spp, passes, iterations or mutations "
+                      "per pixel)"}
 
 
-def transport_error_vs_time(charts):
-    """Stage 6: RMSE over each scene's region against wall time, one panel per scene."""
-    rows = read_rows(charts / "stage6-error-vs-time.csv")
+def transport_error_vs_time(charts, stage):
+    """Stages 6 and 7: RMSE over each scene's region against wall time, one panel per scene."""
+    if not (charts / f"stage{stage}-error-vs-time.csv").exists():
+        return
+    rows = read_rows(charts / f"stage{stage}-error-vs-time.csv")
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
     fig, axes = plt.subplots(1, len(scenes), figsize=(4 * len(scenes), 4.2))
     for ax, scene in zip(axes, scenes):
@@ -340,20 +346,22 @@ def transport_error_vs_time(charts):
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
     axes[0].set_ylabel("RMSE against the converged reference")
-    fig.suptitle("Stage 6: error against time where path tracing fails (1, 2, 4, ... spp or SPPM passes)")
+    fig.suptitle(TRANSPORT_TITLE[stage])
     fig.tight_layout()
-    fig.savefig(charts / "stage6-error-vs-time.png", dpi=110)
+    fig.savefig(charts / f"stage{stage}-error-vs-time.png", dpi=110)
     plt.close(fig)
 
 
-def transport_pictures(root, renders, charts):
-    """Stage 6's equal-time pictures: per scene, each method's render of about 2 s side by side."""
+def transport_pictures(root, renders, charts, stage, scenes=None):
+    """Equal-time pictures of stage 6 or 7: per scene, each method's render of about 2 s side by side."""
     sys.path.insert(0, str(pathlib.Path(__file__).parent))
     from pfm import read_pfm  # noqa: E402  (a sibling tool)
-    rows = [r for r in read_rows(charts / "stage6-error-vs-time.csv") if r["picture"] == "1"]
+    rows = [r for r in read_rows(charts / f"stage{stage}-error-vs-time.csv") if r["picture"] == "1"]
     for scene in dict.fromkeys(r["scene"] for r in rows):
+        if scenes and scene not in scenes:
+            continue
         mine = [r for r in rows if r["scene"] == scene]
-        images = [read_pfm(renders / f"stage6-{scene}-{r['method']}.pfm") for r in mine]
+        images = [read_pfm(renders / f"stage{stage}-{scene}-{r['method']}.pfm") for r in mine]
         height, width = images[0].shape[:2]
         scale = max(1, 256 // width)
         fig = plt.figure(figsize=(len(images) * scale * width / 100, (scale * height + 24) / 100), dpi=100)
@@ -361,12 +369,28 @@ def transport_pictures(root, renders, charts):
             ax = fig.add_axes([col / len(images), 0, 1 / len(images), scale * height / (scale * height + 24)])
             ax.imshow(srgb(image), interpolation="nearest")
             ax.set_axis_off()
-            unit = "passes" if r["method"] == "sppm" else "spp"
+            unit = {"sppm": "passes", "vcm": "iterations", "mlt": "mpp", "pssmlt": "mpp"}.get(r["method"], "spp")
             fig.text((col + 0.5) / len(images), 1 - 12 / (scale * height + 24),
                      f"{r['method']}: {r['spp']} {unit}, {float(r['seconds']):.1f} s", ha="center", va="center",
                      fontsize=8)
-        fig.savefig(root / "docs" / "images" / f"stage6-{scene}.png", dpi=100)
+        fig.savefig(root / "docs" / "images" / f"stage{stage}-{scene}.png", dpi=100)
         plt.close(fig)
+
+
+def mutation_map_picture(root, renders):
+    """Stage 7: an MLT render of the door-ajar scene beside its mutation map."""
+    from PIL import Image  # noqa: E402  (Debian's python3-pil, as for the other pictures)
+    images = [Image.open(renders / "door-mlt.png"), Image.open(renders / "door-map.png")]
+    width, height = images[0].size
+    fig = plt.figure(figsize=(2 * width / 100, (height + 24) / 100), dpi=100)
+    titles = ["multiplexed MLT, 64 mutations per pixel", "where its chains stepped (log scale)"]
+    for col, (image, title) in enumerate(zip(images, titles)):
+        ax = fig.add_axes([col / 2, 0, 1 / 2, height / (height + 24)])
+        ax.imshow(image, interpolation="nearest")
+        ax.set_axis_off()
+        fig.text((col + 0.5) / 2, 1 - 12 / (height + 24), title, ha="center", va="center", fontsize=7)
+    fig.savefig(root / "docs" / "images" / "stage7-mutation-map.png", dpi=100)
+    plt.close(fig)
 
 
 def main(root):
@@ -382,7 +406,8 @@ def main(root):
     path_error_vs_time(charts)
     adaptive_error_vs_time(charts)
     path_convergence(charts)
-    transport_error_vs_time(charts)
+    transport_error_vs_time(charts, 6)
+    transport_error_vs_time(charts, 7)
     renders = pathlib.Path(root) / "build" / "stage4-renders"
     if renders.exists():
         estimator_pictures(pathlib.Path(root), renders)
@@ -391,7 +416,12 @@ def main(root):
         cornell_pictures(pathlib.Path(root), cornell)
     transport = pathlib.Path(root) / "build" / "stage6-renders"
     if transport.exists():
-        transport_pictures(pathlib.Path(root), transport, charts)
+        transport_pictures(pathlib.Path(root), transport, charts, 6)
+    transport = pathlib.Path(root) / "build" / "stage7-renders"
+    if transport.exists():
+        transport_pictures(pathlib.Path(root), transport, charts, 7, scenes={"door-ajar", "caustic-through-glass"})
+        if (transport / "door-map.png").exists():
+            mutation_map_picture(pathlib.Path(root), transport)
     print(f"charts written to {charts}")
 
 

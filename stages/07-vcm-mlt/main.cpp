@@ -5,9 +5,13 @@
 #include "07-vcm-mlt/mlt.h"
 #include "07-vcm-mlt/vcm.h"
 #include "common/error.h"
+#include "common/heat_map.h"
+#include "common/image_io.h"
 #include "common/sample_batch.h"
 #include "common/stage_program.h"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -33,6 +37,7 @@ int main(int argc, char** argv) {
   std::optional<float> radius, alpha;
   int mutations = 0, chains = 0, bootstrap = 0;  // 0: not given
   std::optional<float> large_step;
+  std::string mutation_map;
 
   return run_stage_program(
       argc, argv, "stage7", "Stage 7: vertex connection and merging, and Metropolis light transport", options,
@@ -63,6 +68,9 @@ int main(int argc, char** argv) {
                   "(per path depth for mlt; default 100000)",
                   decimal_in(1, 100000000));
         flags.add_max_depth(options, "mlt: the deepest path a chain may take, in bounces");
+        flags.add_output("--mutation-map", mutation_map,
+                         "mlt, pssmlt: also write a PNG heat map of where the chains spent their steps, on a log "
+                         "scale (black: none, pale yellow: the most any pixel got)");
         flags.add("--roulette-start", vcm.walk.roulette_start,
                   "Bounces before Russian roulette may end a subpath (default 4; not mlt, whose subpaths have the "
                   "length their strategy asks for)",
@@ -82,6 +90,9 @@ int main(int argc, char** argv) {
                : chains     ? "--chains"
                             : "--bootstrap",
                "--mode mlt and pssmlt");
+        refuse(!metropolis && !mutation_map.empty(), "--mutation-map", "--mode mlt and pssmlt");
+        if (!mutation_map.empty() && image_format_for(mutation_map) != ImageFormat::png)
+          throw UsageError("--mutation-map: the heat map is a picture: give a .png file");
         refuse(mode != Mode::mlt && options.max_depth.has_value(), "--max-depth",
                "--mode mlt (every other mode ends paths by Russian roulette)");
         if (options.sample_range || options.crop || is_batch_path(options.out))
@@ -123,10 +134,19 @@ int main(int argc, char** argv) {
               return metropolis ? render_mlt(scene, camera, settings, mlt, options.threads, guard, progress, &report)
                                 : render_vcm(scene, camera, settings, vcm, options.threads, guard, progress);
             });
-        if (metropolis)
-          std::printf("stage7: b = %.4g +- %.2g (bootstrap), %lld steps, %.1f %% accepted\n", report.b,
+        if (metropolis) {
+          std::printf("stage7: b = %.4g +- %.2g (bootstrap and large steps), %lld steps, %.1f %% accepted\n", report.b,
                       report.b_standard_error, static_cast<long long>(report.mutations),
                       report.mutations > 0 ? 100.0 * double(report.accepted) / double(report.mutations) : 0.0);
+          if (!mutation_map.empty() && !report.visits.empty()) {
+            // On a log scale: a chain dwells on the brightest pixels hundreds of times longer than on
+            // the rest, which a linear scale shows black.
+            std::vector<std::uint32_t> shade(report.visits.size());
+            for (size_t i = 0; i < shade.size(); ++i) shade[i] = std::uint32_t(1000.0 * std::log1p(report.visits[i]));
+            write_image(mutation_map, heat_map(shade, settings.width, settings.height,
+                                               *std::max_element(shade.begin(), shade.end())));
+          }
+        }
         if (guard.dropped() > 0)
           std::printf("stage7: %llu samples had NaN, infinite or negative radiance and were counted as black\n",
                       static_cast<unsigned long long>(guard.dropped()));

@@ -109,6 +109,11 @@ ChainStatistics run_chain(PrimarySampleSpace& sampler, Rng& choice, std::int64_t
     if (m % 256 == 255 && interrupt_requested()) break;  // a shorter chain is a chain: it is kept
     sampler.start_iteration();
     MltSample proposed = sample(sampler);
+    if (sampler.large_step()) {
+      ++stats.large_steps;
+      stats.large_step_sum += proposed.importance;
+      stats.large_step_sum2 += double(proposed.importance) * proposed.importance;
+    }
     const float a = acceptance(current.importance, proposed.importance);
     // Both states, each with its expected weight (Veach's thesis, section 11.4.2).
     if (a > 0.0f && proposed.importance > 0.0f)
@@ -171,18 +176,17 @@ SampleSums render_mlt(const LightingScene& scene, const Camera& camera, const Re
       weight[i] = sample_state(int(i / size_t(bootstrap)), sampler, scratch).importance;
     }
   });
-  // b = sum over the states of the mean I of their samples, with its standard error.
-  double b = 0.0, variance = 0.0;
-  for (int d = 0; d < states; ++d) {
+  // Per state, the independent samples of I: the bootstrap's now, the chains' large steps later.
+  struct Independent {
     double sum = 0.0, sum2 = 0.0;
-    for (std::int64_t i = 0; i < bootstrap; ++i) {
-      const double w = weight[size_t(d * bootstrap + i)];
-      sum += w;
-      sum2 += w * w;
-    }
-    const double mean = sum / double(bootstrap);
-    b += mean;
-    if (bootstrap > 1) variance += std::max(0.0, sum2 / double(bootstrap) - mean * mean) / double(bootstrap - 1);
+    std::int64_t count = 0;
+  };
+  std::vector<Independent> independent(static_cast<size_t>(states));
+  for (size_t i = 0; i < weight.size(); ++i) {
+    Independent& d = independent[i / size_t(bootstrap)];
+    d.sum += weight[i];
+    d.sum2 += double(weight[i]) * weight[i];
+    ++d.count;
   }
   std::vector<double> cumulative(weight.size());
   double running = 0.0;
@@ -192,6 +196,8 @@ SampleSums render_mlt(const LightingScene& scene, const Camera& camera, const Re
   std::vector<std::uint32_t> visits(size_t(pixels), 0);
   const std::int64_t total = std::int64_t(options.mutations_per_pixel) * pixels;
   const int chains = std::max(options.chains, 1);
+  // The steps of chain c: the total shared as evenly as whole steps allow.
+  const auto steps_of = [&](int c) { return total / chains + (c < total % chains ? 1 : 0); };
   std::int64_t done = 0, accepted = 0;
   const auto pixel_of = [&](Vec2 p) {
     const int x = std::clamp(int(p.x), 0, width - 1), y = std::clamp(int(p.y), 0, height - 1);
@@ -204,6 +210,7 @@ SampleSums render_mlt(const LightingScene& scene, const Camera& camera, const Re
       ChainStatistics stats;
     };
     std::vector<ChainOutput> group(kChainsPerGroup);
+    std::vector<int> state_of(kChainsPerGroup);  // the state (depth) of each chain of the group
     for (int first = 0; first < chains && !interrupt_requested(); first += kChainsPerGroup) {
       const int count = std::min(kChainsPerGroup, chains - first);
       parallel_for(count, threads, [&](int k) {
@@ -219,8 +226,9 @@ SampleSums render_mlt(const LightingScene& scene, const Camera& camera, const Re
         PrimarySampleSpace sampler(settings.seed, index, options.sigma, options.large_step);
         Rng choice(settings.seed, kChainChoiceStreams + std::uint64_t(c), 0);
         const int state = int(index / size_t(bootstrap));
+        state_of[size_t(k)] = state;
         MltScratch scratch;
-        const std::int64_t mutations = (c + 1) * total / chains - c * total / chains;
+        const std::int64_t mutations = steps_of(c);
         out.stats = run_chain(
             sampler, choice, mutations, [&](PrimarySampleSpace& s) { return sample_state(state, s, scratch); },
             [&](const Splat& splat, float w) {
@@ -237,9 +245,22 @@ SampleSums render_mlt(const LightingScene& scene, const Camera& camera, const Re
         for (const std::uint32_t p : out.visited) ++visits[p];
         done += out.stats.proposals;
         accepted += out.stats.accepted;
+        Independent& d = independent[size_t(state_of[size_t(k)])];
+        d.sum += out.stats.large_step_sum;
+        d.sum2 += out.stats.large_step_sum2;
+        d.count += out.stats.large_steps;
       }
-      if (progress) progress->advance(std::uint64_t((first + count) * total / chains - first * total / chains));
+      std::int64_t planned = 0;
+      for (int k = 0; k < count; ++k) planned += steps_of(first + k);
+      if (progress) progress->advance(std::uint64_t(planned));
     }
+  }
+  // b = the sum over the states of their samples' mean I, with its standard error.
+  double b = 0.0, variance = 0.0;
+  for (const Independent& d : independent) {
+    const double n = double(std::max<std::int64_t>(d.count, 1)), mean = d.sum / n;
+    b += mean;
+    if (d.count > 1) variance += std::max(0.0, d.sum2 / n - mean * mean) / (n - 1.0);
   }
   // Pixel j is b times its splats' sum over the steps per pixel (the chains' splats count each
   // pixel's share of b).

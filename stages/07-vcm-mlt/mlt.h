@@ -76,6 +76,10 @@ float acceptance(float current, float proposed);
 // the statistics count the steps made.
 struct ChainStatistics {
   std::int64_t proposals = 0, accepted = 0;
+  // The large steps' proposals: independent samples of I, which sharpen the bootstrap's b
+  // (Kelemen et al., section 4).
+  std::int64_t large_steps = 0;
+  double large_step_sum = 0.0, large_step_sum2 = 0.0;
 };
 ChainStatistics run_chain(PrimarySampleSpace& sampler, Rng& choice, std::int64_t mutations,
                           const std::function<MltSample(PrimarySampleSpace&)>& sample,
@@ -84,7 +88,9 @@ ChainStatistics run_chain(PrimarySampleSpace& sampler, Rng& choice, std::int64_t
 
 // What a render measured besides its image.
 struct MltReport {
-  double b = 0.0, b_standard_error = 0.0;  // the bootstrap's estimate of the image's integral of I
+  // The estimate of the image's integral of I, from the bootstrap and the large steps, and its
+  // standard error.
+  double b = 0.0, b_standard_error = 0.0;
   std::int64_t mutations = 0, accepted = 0;
   std::vector<std::uint32_t> visits;  // per pixel, the steps that ended with the chain's state there
 };
@@ -92,7 +98,8 @@ struct MltReport {
 // The whole render: the bootstrap (options.bootstrap independent samples per depth), then
 // options.chains chains of (mutations_per_pixel x pixels) / chains steps, each started from a
 // bootstrap sample drawn in proportion to its I (so no chain starts out of the stationary
-// distribution: no start-up bias). Per pixel the image, with the count 1. The same bit for bit for
+// distribution: no start-up bias). b is the mean I of every independent sample of each depth: the
+// bootstrap's and the chains' large steps'. Per pixel the image, with the count 1. The same bit for bit for
 // any thread count: bootstrap sample and chain i draw from their own streams, and the chains'
 // splats are added in chain order, a fixed group of chains at a time. A stop request ends every
 // chain of the group under way early and starts no other; the image is scaled by the steps made.

@@ -200,7 +200,8 @@ def processes_running_from(folder):
             continue
         for link in ("exe", "cwd"):
             try:
-                if os.readlink(entry / link).startswith(str(folder)):
+                # A path inside `folder`, not one that merely starts with its name (/tmp/work2).
+                if pathlib.Path(os.readlink(entry / link)).is_relative_to(folder):
                     found.append(f"{entry.name} ({os.readlink(entry / 'exe')})")
                     break
             except OSError:

@@ -7,6 +7,7 @@
 #include "common/metrics.h"
 
 #include "support/sample_mean.h"
+#include "support/log_log_slope.h"
 #include "support/subject.h"
 #include "support/test_support.h"
 
@@ -97,17 +98,6 @@ TEST(CornellBox, NaiveDepthLimitLosesTheLightOfLaterBounces) {
   EXPECT_LT(e.mean + 3.0 * e.standard_error, grey(mean_over(c.reference, ceiling.rect)));
 }
 
-// Least-squares slope of log(rmse) against log(spp).
-double log_log_slope(const std::vector<double>& spp, const std::vector<double>& rmse) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = double(spp.size());
-  for (size_t i = 0; i < spp.size(); ++i) {
-    const double x = std::log(spp[i]), y = std::log(rmse[i]);
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
-
 TEST(CornellBox, ErrorFallsAsOneOverSquareRootOfSamples) {
   // RMSE against the reference over 1 to 256 spp (2.4 decades), at 32 x 32: independent samples
   // give Monte Carlo's N^-1/2 exactly (variance sigma^2 / N per pixel); a bias would flatten the
@@ -141,7 +131,7 @@ TEST(CornellBox, ErrorFallsAsOneOverSquareRootOfSamples) {
       error[int(sampler)].push_back(std::sqrt(mse_sum / images));
     }
   }
-  const double independent = log_log_slope(spp, error[0]), sobol = log_log_slope(spp, error[1]);
+  const double independent = testing::log_log_slope(spp, error[0]), sobol = testing::log_log_slope(spp, error[1]);
   for (size_t i = 0; i < spp.size(); ++i) std::printf("%g spp: %.5f %.5f\n", spp[i], error[0][i], error[1][i]);
   std::printf("slopes: independent %.3f, sobol %.3f\n", independent, sobol);
   EXPECT_NEAR(independent, -0.5, 0.05);

@@ -8,6 +8,7 @@
 #include "06-light-transport/light_emission.h"
 
 #include "stage6/loaded_scene.h"
+#include "stage6/subpaths.h"
 #include "support/glowing_room.h"
 #include "support/subject.h"
 #include "support/test_support.h"
@@ -28,25 +29,9 @@ const LoadedScene& caustic() {
   return s;
 }
 
-// A camera subpath through a random pixel and a light subpath, from Rng(seed, 0, k).
-struct Subpaths {
-  std::vector<PathVertex> camera, light;
-};
+using testing::Subpaths;
 Subpaths subpaths(const LoadedScene& s, std::uint64_t k, int max_vertices = 6) {
-  Rng rng(77, 0, k);
-  Subpaths p;
-  const Ray ray = generate_camera_ray(s.camera, Vec2(rng.uniform() * 64.0f, rng.uniform() * 48.0f));
-  p.camera.push_back(camera_vertex(s.camera));
-  WalkSettings walk;
-  walk.max_vertices = max_vertices;
-  walk.roulette_start = 100;  // every walk runs to max_vertices or until it leaves the scene
-  random_walk(s.scene, ray, Color(1.0f), camera_direction_pdf(s.camera, ray.direction), walk, rng, p.camera);
-  if (const std::optional<LightSubpathStart> start = start_light_subpath(s.scene, rng, walk.offset)) {
-    p.light.push_back(start->origin);
-    walk.mode = TransportMode::importance;
-    random_walk(s.scene, start->ray, start->beta, start->pdf_w, walk, rng, p.light);
-  }
-  return p;
+  return testing::random_subpaths(s, 77, k, max_vertices);
 }
 
 void expect_relative(double actual, double expected, double tolerance, const std::string& what) {

@@ -4,38 +4,25 @@
 #include "common/image_io.h"
 #include "common/metrics.h"
 
-#include "reliability/child_process.h"
 #include "support/glowing_room.h"
+#include "support/interrupted_render.h"
 #include "support/subject.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
 
 #include <csignal>
-#include <sstream>
-#include <thread>
 
 namespace rt {
 namespace {
 
-using namespace std::chrono_literals;
 using testing::expect_one_line_error;
 using testing::run_command;
 using testing::ScratchDir;
 using testing::source_path;
 
-// Built by a stream: GCC 12 warns wrongly (-Wrestrict) on long chains of string additions.
-std::string stage6(const std::string& arguments) {
-  std::ostringstream command;
-  command << "'" << STAGE6_EXE << "' " << arguments;
-  return command.str();
-}
-
-std::string scene_flag(const char* scene) {
-  std::ostringstream flag;
-  flag << "--scene " << source_path(std::string("assets/scenes/") + scene).string();
-  return flag.str();
-}
+std::string stage6(const std::string& arguments) { return testing::program_command(STAGE6_EXE, arguments); }
+using testing::scene_flag;
 
 const std::string kCornell = scene_flag("cornell-box.json");
 
@@ -145,17 +132,10 @@ TEST(Stage6Cli, CtrlCKeepsWhatWasRendered) {
     // The run as the test saw it: started, ended within two seconds of Ctrl-C, its exit code (-1
     // when a signal ended it), what it printed and the image it wrote.
     const auto [started, ended, exit_code, said, image] = testing::subject([&] {
-      testing::ChildProcess child({STAGE6_EXE, "--scene", (dir / "room.json").string(), "--width", "48", "--height", "48",
-                                   "--spp", "1048576", "--photons", "2000", "--threads", "2", "--method", m, "--out",
-                                   out.string()},
-                                  dir / "stdout.txt", dir / "stderr.txt");
-      if (!child.started()) return std::tuple(false, false, -1, std::string(), Image());
-      std::this_thread::sleep_for(1000ms);
-      child.signal(SIGINT);
-      const std::optional<int> status = child.wait_for(2000ms);
-      if (!status) return std::tuple(true, false, -1, std::string(), Image());
-      return std::tuple(true, true, WIFEXITED(*status) ? WEXITSTATUS(*status) : -1, testing::read_text(dir / "stdout.txt"),
-                        std::filesystem::exists(out) ? read_pfm(out) : Image());
+      return testing::interrupt_render(
+          {STAGE6_EXE, "--scene", (dir / "room.json").string(), "--width", "48", "--height", "48", "--spp", "1048576",
+           "--photons", "2000", "--threads", "2", "--method", m, "--out", out.string()},
+          dir.path(), out);
     });
     ASSERT_TRUE(started);
     ASSERT_TRUE(ended) << m << ": still running two seconds after Ctrl-C";

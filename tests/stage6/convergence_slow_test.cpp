@@ -5,6 +5,7 @@
 
 #include "stage6/scene_regions.h"
 #include "stage6/transport_estimates.h"
+#include "support/log_log_slope.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
@@ -12,31 +13,19 @@
 namespace rt {
 namespace {
 
-
-// The least-squares slope of log(error) against log(samples).
-double log_log_slope(const std::vector<int>& samples, const std::vector<double>& errors) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = double(samples.size());
-  for (size_t i = 0; i < samples.size(); ++i) {
-    const double x = std::log(double(samples[i])), y = std::log(errors[i]);
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
-
 TEST(SlowConvergence, BdptErrorOnTheCausticFallsAsOneOverSquareRootOfSamples) {
   const SceneDescription description = load_scene(testing::source_path("assets/scenes/caustic.json"));
   const LightingScene scene(description);
   const Camera camera(description.camera, 128, 96);
   const Image reference = read_pfm(testing::source_path("assets/references/caustic-128x96.pfm"));
-  std::vector<int> samples;
+  std::vector<double> samples;
   std::vector<double> errors;
   for (int spp = 4; spp <= 256; spp *= 4) {
     samples.push_back(spp);
     errors.push_back(rmse(render_method(scene, camera, method(TransportMethod::bdpt), spp, 7), reference,
                                  kCausticRegion));
   }
-  const double slope = log_log_slope(samples, errors);
+  const double slope = testing::log_log_slope(samples, errors);
   std::printf("BDPT caustic RMSE at 4, 16, 64, 256 spp: %.4f %.4f %.4f %.4f, slope %.3f\n", errors[0], errors[1],
               errors[2], errors[3], slope);
   // The reference's own error there (about 0.025, assets/references/README.md) flattens the last
@@ -51,13 +40,13 @@ TEST(SlowConvergence, SppmErrorKeepsFallingOverManyPasses) {
   const Image reference = downsample(read_pfm(testing::source_path("assets/references/cornell-box-256.pfm")), 4);
   TransportOptions options = method(TransportMethod::sppm);
   options.sppm.photons_per_pass = 20000;
-  std::vector<int> passes;
+  std::vector<double> passes;
   std::vector<double> errors;
   for (int p = 4; p <= 256; p *= 4) {
     passes.push_back(p);
     errors.push_back(rmse(render_method(scene, camera, options, p, 7), reference));
   }
-  const double slope = log_log_slope(passes, errors);
+  const double slope = testing::log_log_slope(passes, errors);
   std::printf("SPPM Cornell RMSE at 4, 16, 64, 256 passes: %.4f %.4f %.4f %.4f, slope %.3f\n", errors[0], errors[1],
               errors[2], errors[3], slope);
   for (size_t i = 1; i < errors.size(); ++i) EXPECT_LT(errors[i], errors[i - 1]) << passes[i] << " passes";

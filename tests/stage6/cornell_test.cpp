@@ -13,23 +13,11 @@
 namespace rt {
 namespace {
 
-// Every region's mean within 3 standard errors (plus `bias_allowance` of the reference, for a
-// biased method) of the reference's.
 void expect_agreement(const TransportOptions& options, int spp, int runs, double bias_allowance) {
   const testing::LoadedScene& c = testing::cornell_box<64, 64>();
-  const std::vector<RegionEstimate> estimates =
-      region_estimates([&](std::uint64_t seed) { return render_method(c.scene, c.camera, options, spp, seed); },
-                       testing::kCornellRegions, runs);
-  for (size_t r = 0; r < std::size(testing::kCornellRegions); ++r) {
-    const double expected = grey(mean_over(testing::cornell_reference_64(), testing::kCornellRegions[r]));
-    EXPECT_NEAR(estimates[r].mean, expected, 3.0 * estimates[r].standard_error + bias_allowance * expected)
-        << method_name(options.method) << ", " << testing::kCornellRegionNames[r] << ": standard error "
-        << estimates[r].standard_error;
-    // The error bar is a real one: neither zero (a render that ignored its seed) nor so wide that
-    // any answer passes.
-    EXPECT_GT(estimates[r].standard_error, 0.0) << testing::kCornellRegionNames[r];
-    EXPECT_LT(estimates[r].standard_error, 0.02 * expected) << testing::kCornellRegionNames[r];
-  }
+  testing::expect_cornell_agreement(
+      [&](std::uint64_t seed) { return render_method(c.scene, c.camera, options, spp, seed); }, runs, bias_allowance,
+      method_name(options.method));
 }
 
 TEST(CornellAgreement, LightTracingFindsTheReference) { expect_agreement(method(TransportMethod::lt), 8, 16, 0.0); }

@@ -3,16 +3,14 @@
 #include "common/image_io.h"
 #include "common/metrics.h"
 
-#include "reliability/child_process.h"
 #include "support/glowing_room.h"
+#include "support/interrupted_render.h"
 #include "support/subject.h"
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
 
 #include <csignal>
-#include <sstream>
-#include <thread>
 
 namespace rt {
 namespace {
@@ -22,17 +20,8 @@ using testing::run_command;
 using testing::ScratchDir;
 using testing::source_path;
 
-std::string stage7(const std::string& arguments) {
-  std::ostringstream command;
-  command << "'" << STAGE7_EXE << "' " << arguments;
-  return command.str();
-}
-
-std::string scene_flag(const char* scene) {
-  std::ostringstream flag;
-  flag << "--scene " << source_path(std::string("assets/scenes/") + scene).string();
-  return flag.str();
-}
+std::string stage7(const std::string& arguments) { return testing::program_command(STAGE7_EXE, arguments); }
+using testing::scene_flag;
 
 const std::string kCornell = scene_flag("cornell-box.json");
 
@@ -40,9 +29,10 @@ TEST(Stage7Cli, EveryModeRendersTheCornellBox) {
   ScratchDir dir;
   for (const char* m : {"vcm", "bpt", "ppm", "lt", "mlt", "pssmlt"}) {
     const auto out = dir / (std::string(m) + ".pfm");
-    const std::string budget = std::string(m).find("mlt") != std::string::npos
-                                   ? " --mutations-per-pixel 32 --bootstrap 5000 --chains 256"
-                                   : " --spp 8";
+    const bool metropolis = std::string(m).find("mlt") != std::string::npos;
+    const std::string budget = metropolis ? " --mutations-per-pixel 32 --bootstrap 5000 --chains 256 --mutation-map " +
+                                                (dir / "map.png").string()
+                                          : " --spp 8";
     const auto r = RT_GRADED(run_command)(
         stage7(kCornell + " --width 32 --height 32" + budget + " --mode " + m + " --out " + out.string()), dir);
     ASSERT_EQ(r.exit_code, 0) << m << ": " << r.err;
@@ -51,6 +41,10 @@ TEST(Stage7Cli, EveryModeRendersTheCornellBox) {
     const double back_wall = mean_over(RT_GRADED(read_pfm)(out), PixelRect{18, 7, 23, 12}).x;
     EXPECT_GT(back_wall, 0.25) << m << "\n" << r.err;
     EXPECT_LT(back_wall, 0.6) << m;
+    if (metropolis) {
+      EXPECT_TRUE(RT_GRADED(std::filesystem::exists)(dir / "map.png")) << m;  // where the chains went
+      std::filesystem::remove(dir / "map.png");
+    }
   }
 }
 
@@ -79,6 +73,8 @@ TEST(Stage7Cli, WhatItCannotRenderIsOneLine) {
       {kCornell + " --mode ppm --bootstrap 8", 2, "--bootstrap is for --mode mlt and pssmlt"},
       {kCornell + " --mode mlt --mutations-per-pixel 0", 2, "--mutations-per-pixel"},
       {kCornell + " --mode mlt --large-step 1.5", 2, "--large-step"},
+      {kCornell + " --mutation-map m.png", 2, "--mutation-map is for --mode mlt and pssmlt"},
+      {kCornell + " --mode mlt --mutation-map m.pfm", 2, "--mutation-map: the heat map is a picture"},
       {kCornell + " --crop 0:4,0:4", 2, "cannot be rendered in batches or windows"},
       {kCornell + " --mode ppm --sample-range 0:1", 2, "cannot be rendered in batches or windows"},
       {kCornell + " --filter gaussian", 2, "--filter: stage7 uses the box filter"},
@@ -97,27 +93,18 @@ TEST(Stage7Cli, WhatItCannotRenderIsOneLine) {
 }
 
 TEST(Stage7Cli, CtrlCKeepsWhatWasRendered) {
-  using namespace std::chrono_literals;
   for (const std::vector<std::string>& mode :
        {std::vector<std::string>{"--mode", "vcm", "--spp", "1048576"},
         std::vector<std::string>{"--mode", "mlt", "--mutations-per-pixel", "1000000", "--bootstrap", "2000"}}) {
     ScratchDir dir;
     testing::write_text(dir / "room.json", testing::kGlowingRoom);
     const auto out = dir / "partial.pfm";
-    const auto [started, ended, exit_code, said, image] = testing::subject([&] {
-      std::vector<std::string> command{
-          STAGE7_EXE, "--scene",   (dir / "room.json").string(), "--width", "48", "--height", "48", "--threads", "2",
-          "--out",    out.string()};
-      command.insert(command.end(), mode.begin(), mode.end());
-      testing::ChildProcess child(command, dir / "stdout.txt", dir / "stderr.txt");
-      if (!child.started()) return std::tuple(false, false, -1, std::string(), Image());
-      std::this_thread::sleep_for(1000ms);
-      child.signal(SIGINT);
-      const std::optional<int> status = child.wait_for(2000ms);
-      if (!status) return std::tuple(true, false, -1, std::string(), Image());
-      return std::tuple(true, true, WIFEXITED(*status) ? WEXITSTATUS(*status) : -1,
-                        testing::read_text(dir / "stdout.txt"), std::filesystem::exists(out) ? read_pfm(out) : Image());
-    });
+    std::vector<std::string> command{
+        STAGE7_EXE, "--scene",   (dir / "room.json").string(), "--width", "48", "--height", "48", "--threads", "2",
+        "--out",    out.string()};
+    command.insert(command.end(), mode.begin(), mode.end());
+    const auto [started, ended, exit_code, said, image] =
+        testing::subject([&] { return testing::interrupt_render(command, dir.path(), out); });
     ASSERT_TRUE(started);
     ASSERT_TRUE(ended) << mode[1] << ": still running two seconds after Ctrl-C";
     EXPECT_EQ(exit_code, 128 + SIGINT) << mode[1];

@@ -55,15 +55,9 @@ std::vector<RegionEstimate> cornell_estimates(const VcmOptions& options, int spp
 }
 
 void expect_agreement(const VcmOptions& options, int spp, int runs, double bias_allowance) {
-  const std::vector<RegionEstimate> estimates = cornell_estimates(options, spp, runs);
-  for (size_t r = 0; r < std::size(testing::kCornellRegions); ++r) {
-    const double expected = grey(mean_over(testing::cornell_reference_64(), testing::kCornellRegions[r]));
-    EXPECT_NEAR(estimates[r].mean, expected, 3.0 * estimates[r].standard_error + bias_allowance * expected)
-        << mode_name(options.mode) << ", " << testing::kCornellRegionNames[r] << ": standard error "
-        << estimates[r].standard_error;
-    EXPECT_GT(estimates[r].standard_error, 0.0) << testing::kCornellRegionNames[r];
-    EXPECT_LT(estimates[r].standard_error, 0.02 * expected) << testing::kCornellRegionNames[r];
-  }
+  const testing::LoadedScene& c = testing::cornell_box<64, 64>();
+  testing::expect_cornell_agreement([&](std::uint64_t seed) { return render_mode(c, options, spp, seed); }, runs,
+                                    bias_allowance, mode_name(options.mode));
 }
 
 TEST(VcmCornell, VertexConnectionAndMergingFindsTheReference) { expect_agreement(mode(VcmMode::vcm), 4, 16, 0.0); }

@@ -88,6 +88,21 @@ inline CommandResult run_command(const std::string& command, const ScratchDir& s
   return CommandResult{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
 }
 
+// The command line that runs `program` (quoted: a build path may hold spaces) with `arguments`.
+// Built by a stream: GCC 12 warns wrongly (-Wrestrict) on long chains of string additions.
+inline std::string program_command(const char* program, const std::string& arguments) {
+  std::ostringstream command;
+  command << "'" << program << "' " << arguments;
+  return command.str();
+}
+
+// "--scene" and the path of assets/scenes/NAME.
+inline std::string scene_flag(const char* name) {
+  std::ostringstream flag;
+  flag << "--scene " << source_path(std::string("assets/scenes/") + name).string();
+  return flag.str();
+}
+
 // A failed run as the command line promises it: exit `code`, and one line on stderr containing
 // `fragment`.
 inline void expect_one_line_error(const CommandResult& r, int code, const std::string& fragment) {
