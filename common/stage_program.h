@@ -12,6 +12,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -53,12 +54,26 @@ class StageFlags {
                 const std::string& help);
   // A word from `words`, each naming a value of the enum.
   template <class Enum>
+  requires std::is_enum_v<Enum>
   void add_choice(const std::string& name, Enum& value, const std::vector<std::pair<std::string, Enum>>& words,
                   const std::string& help) {
     std::vector<std::pair<std::string, int>> numbers;
     for (const auto& [word, choice] : words) numbers.emplace_back(word, static_cast<int>(choice));
     int& number = numbers_.emplace_back(static_cast<int>(value));
     write_backs_.push_back([&value, &number] { value = static_cast<Enum>(number); });
+    add_choice_number(name, number, numbers, help);
+  }
+  // The same, left empty unless given (for a flag some modes refuse).
+  template <class Enum>
+  void add_choice(const std::string& name, std::optional<Enum>& value,
+                  const std::vector<std::pair<std::string, Enum>>& words, const std::string& help) {
+    std::vector<std::pair<std::string, int>> numbers;
+    for (const auto& [word, choice] : words) numbers.emplace_back(word, static_cast<int>(choice));
+    constexpr int kNotGiven = -1;
+    int& number = numbers_.emplace_back(kNotGiven);
+    write_backs_.push_back([&value, &number] {
+      if (number != kNotGiven) value = static_cast<Enum>(number);
+    });
     add_choice_number(name, number, numbers, help);
   }
   // A switch without a value; `needs`: a switch it may only come with.

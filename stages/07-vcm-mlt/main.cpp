@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   std::optional<float> radius, alpha;
   int mutations = 0, chains = 0, bootstrap = 0;  // 0: not given
   std::optional<float> large_step;
+  std::optional<SamplerKind> sampler;
   std::string mutation_map;
 
   return run_stage_program(
@@ -57,6 +58,11 @@ int main(int argc, char** argv) {
         flags.add("--alpha", alpha,
                   "vcm, ppm: the radius shrinks as r_i = r_1 i^((alpha - 1) / 2), alpha in (0, 1] (default 0.75)",
                   finite_in(1e-6, 1.0));
+        flags.add_choice("--sampler", sampler,
+                         {{sampler_name(SamplerKind::independent), SamplerKind::independent},
+                          {sampler_name(SamplerKind::sobol), SamplerKind::sobol}},
+                         "vcm, bpt, ppm: the camera subpaths' numbers, independent (as stage6's BDPT draws them) or "
+                         "sobol (stage 5's scrambled Sobol points, one per iteration: the default)");
         flags.add("--mutations-per-pixel", mutations,
                   "mlt, pssmlt: the chains' steps in all, per pixel (default 100; replaces --spp)",
                   decimal_in(1, 1000000));
@@ -90,6 +96,7 @@ int main(int argc, char** argv) {
                : chains     ? "--chains"
                             : "--bootstrap",
                "--mode mlt and pssmlt");
+        refuse(sampler && (metropolis || mode == Mode::lt), "--sampler", "--mode vcm, bpt and ppm");
         refuse(!metropolis && !mutation_map.empty(), "--mutation-map", "--mode mlt and pssmlt");
         if (!mutation_map.empty() && image_format_for(mutation_map) != ImageFormat::png)
           throw UsageError("--mutation-map: the heat map is a picture: give a .png file");
@@ -102,6 +109,7 @@ int main(int argc, char** argv) {
                            "render it whole (stage5 can)");
         if (radius) vcm.initial_radius = *radius;
         if (alpha) vcm.alpha = *alpha;
+        if (sampler) vcm.camera_sampler = *sampler;
         mlt.multiplexed = mode == Mode::mlt;
         if (mutations) mlt.mutations_per_pixel = mutations;
         if (large_step) mlt.large_step = *large_step;

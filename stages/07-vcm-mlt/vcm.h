@@ -13,6 +13,7 @@
 // (only light tracing).
 #pragma once
 
+#include "05-path-tracing/path_render.h"
 #include "05-path-tracing/path_tracer.h"
 #include "06-light-transport/bdpt.h"
 #include "06-light-transport/photon_grid.h"
@@ -34,6 +35,11 @@ struct VcmOptions {
   // camera's first hits (default_merge_radius).
   float initial_radius = 0.0f;
   float alpha = 0.75f;  // the radius's shrink exponent; SPPM's alpha, as Knaus & Zwicker show
+  // The camera subpaths' numbers: stage 5's scrambled Sobol points, iteration i taking point i of
+  // its pixel, so that the iterations stratify each pixel's area, its next-event light points and
+  // its first bounces as stage 5's path tracer does; or independent numbers, as stage 6's BDPT
+  // draws them. The light subpaths are shared by all pixels and stay independent.
+  SamplerKind camera_sampler = SamplerKind::sobol;
   WalkSettings walk;
 };
 

@@ -48,6 +48,24 @@ TEST(Stage7Cli, EveryModeRendersTheCornellBox) {
   }
 }
 
+TEST(Stage7Cli, SamplerPicksTheCameraSubpathsNumbers) {
+  // The same seed, the same light subpaths: only the camera's numbers differ, and both images find
+  // the back wall.
+  ScratchDir dir;
+  std::vector<Image> images;
+  for (const char* sampler : {"sobol", "independent"}) {
+    const auto out = dir / (std::string(sampler) + ".pfm");
+    const auto r = RT_GRADED(run_command)(
+        stage7(kCornell + " --width 32 --height 32 --spp 8 --sampler " + sampler + " --out " + out.string()), dir);
+    ASSERT_EQ(r.exit_code, 0) << sampler << ": " << r.err;
+    images.push_back(RT_GRADED(read_pfm)(out));
+    const double back_wall = mean_over(images.back(), PixelRect{18, 7, 23, 12}).x;
+    EXPECT_GT(back_wall, 0.25) << sampler;
+    EXPECT_LT(back_wall, 0.6) << sampler;
+  }
+  EXPECT_FALSE(images[0] == images[1]);
+}
+
 TEST(Stage7Cli, WhatItCannotRenderIsOneLine) {
   ScratchDir dir;
   const std::string out = " --width 8 --height 8 --out " + (dir / "o.png").string();
@@ -69,6 +87,9 @@ TEST(Stage7Cli, WhatItCannotRenderIsOneLine) {
       {kCornell + " --mode pssmlt --max-depth 2", 2, "--max-depth is for --mode mlt"},
       {kCornell + " --mode mlt --radius 1", 2, "--radius is for --mode vcm and ppm"},
       {kCornell + " --mode lt --alpha 0.5", 2, "--alpha is for --mode vcm and ppm"},
+      {kCornell + " --mode lt --sampler sobol", 2, "--sampler is for --mode vcm, bpt and ppm"},
+      {kCornell + " --mode pssmlt --sampler independent", 2, "--sampler is for --mode vcm, bpt and ppm"},
+      {kCornell + " --sampler halton", 2, "--sampler"},
       {kCornell + " --chains 8", 2, "--chains is for --mode mlt and pssmlt"},
       {kCornell + " --mode ppm --bootstrap 8", 2, "--bootstrap is for --mode mlt and pssmlt"},
       {kCornell + " --mode mlt --mutations-per-pixel 0", 2, "--mutations-per-pixel"},
