@@ -165,8 +165,9 @@ using DensityScratch = std::array<PathDensity, 2 * kMaxSubpathVertices>;
 // count's noise: at 64 x 64 pixels three quarters of the Cornell box's squared error. At the lamp's
 // edges a pixel's coverage is what the camera's rays estimate, well only if they are stratified:
 // with independent camera numbers the splats do better there, by far. So with Sobol camera
-// subpaths the camera alone takes these paths (as PBR 3rd ed.'s BDPT always does, section 16.3, its weight then 1);
-// with independent ones, and where the camera cannot hit lights (--mode lt), the splats count too.
+// subpaths the camera alone takes these paths, its weight then 1 (PBR 3rd ed.'s BDPT, section
+// 16.3, always leaves this strategy out); with independent ones, and where the camera cannot hit
+// lights (--mode lt), the splats count too.
 VcmTechniques techniques_for(VcmTechniques on, int k, SamplerKind camera_sampler) {
   if (k == 1 && on.hit_light && camera_sampler == SamplerKind::sobol) on.light_trace = false;
   return on;
