@@ -57,24 +57,20 @@ class StageFlags {
   requires std::is_enum_v<Enum>
   void add_choice(const std::string& name, Enum& value, const std::vector<std::pair<std::string, Enum>>& words,
                   const std::string& help) {
-    std::vector<std::pair<std::string, int>> numbers;
-    for (const auto& [word, choice] : words) numbers.emplace_back(word, static_cast<int>(choice));
     int& number = numbers_.emplace_back(static_cast<int>(value));
     write_backs_.push_back([&value, &number] { value = static_cast<Enum>(number); });
-    add_choice_number(name, number, numbers, help);
+    add_choice_number(name, number, as_numbers(words), help);
   }
   // The same, left empty unless given (for a flag some modes refuse).
   template <class Enum>
   void add_choice(const std::string& name, std::optional<Enum>& value,
                   const std::vector<std::pair<std::string, Enum>>& words, const std::string& help) {
-    std::vector<std::pair<std::string, int>> numbers;
-    for (const auto& [word, choice] : words) numbers.emplace_back(word, static_cast<int>(choice));
     constexpr int kNotGiven = -1;
     int& number = numbers_.emplace_back(kNotGiven);
     write_backs_.push_back([&value, &number] {
       if (number != kNotGiven) value = static_cast<Enum>(number);
     });
-    add_choice_number(name, number, numbers, help);
+    add_choice_number(name, number, as_numbers(words), help);
   }
   // A switch without a value; `needs`: a switch it may only come with.
   void add_switch(const std::string& name, bool& value, const std::string& help, const std::string& needs = "");
@@ -91,6 +87,13 @@ class StageFlags {
  private:
   void add_choice_number(const std::string& name, int& number, const std::vector<std::pair<std::string, int>>& words,
                          const std::string& help);
+  // The enum's words with its values as numbers, which the parser stores.
+  template <class Enum>
+  static std::vector<std::pair<std::string, int>> as_numbers(const std::vector<std::pair<std::string, Enum>>& words) {
+    std::vector<std::pair<std::string, int>> numbers;
+    for (const auto& [word, choice] : words) numbers.emplace_back(word, static_cast<int>(choice));
+    return numbers;
+  }
 
   CLI::App& app_;
   std::deque<int> numbers_;  // a deque: the numbers stay where the parser was told they are

@@ -34,9 +34,7 @@ int main(int argc, char** argv) {
                          "or mis (the default)");
         flags.add("--roulette-start", path.roulette_start,
                   "Bounces before Russian roulette may end a path (rr, nee, mis; default 4)", decimal_in(0, 1000));
-        flags.add_choice("--sampler", sampler,
-                         {{sampler_name(SamplerKind::independent), SamplerKind::independent},
-                          {sampler_name(SamplerKind::sobol), SamplerKind::sobol}},
+        flags.add_choice("--sampler", sampler, sampler_words(),
                          "independent (random numbers) or sobol (scrambled Sobol, the default)");
         add_rectangle_sampling_flag(flags, lighting);
         add_environment_sampling_flag(flags, lighting);

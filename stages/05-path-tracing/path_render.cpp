@@ -17,6 +17,13 @@ const char* integrator_name(PathIntegrator integrator) {
 
 const char* sampler_name(SamplerKind sampler) { return sampler == SamplerKind::sobol ? "sobol" : "independent"; }
 
+std::vector<std::pair<std::string, SamplerKind>> sampler_words() {
+  std::vector<std::pair<std::string, SamplerKind>> words;
+  for (const SamplerKind sampler : {SamplerKind::independent, SamplerKind::sobol})
+    words.emplace_back(sampler_name(sampler), sampler);
+  return words;
+}
+
 SampleSums render_path_samples(const LightingScene& scene, const Camera& camera,
                                const RenderSettings& settings, const PathOptions& options, SamplerKind sampler,
                                int threads, SampleGuard& guard, ProgressBar* progress,

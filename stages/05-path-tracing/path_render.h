@@ -7,6 +7,10 @@
 #include "05-path-tracing/adaptive_sampling.h"
 #include "05-path-tracing/path_tracer.h"
 
+#include <string>
+#include <utility>
+#include <vector>
+
 namespace rt {
 
 enum class SamplerKind { independent, sobol };
@@ -16,6 +20,8 @@ inline constexpr PathIntegrator kPathIntegrators[] = {PathIntegrator::naive, Pat
                                                       PathIntegrator::next_event_estimation, PathIntegrator::mis};
 const char* integrator_name(PathIntegrator integrator);  // naive, rr, nee, mis
 const char* sampler_name(SamplerKind sampler);           // independent, sobol
+// Each sampler with its name, for a program's --sampler flag (stage5's, and stage7's camera subpaths).
+std::vector<std::pair<std::string, SamplerKind>> sampler_words();
 
 // The image of `settings.spp` paths per pixel. Samples with NaN, infinite or negative radiance are
 // counted by `guard` and enter the image as black. Deterministic for any thread count.

@@ -58,9 +58,7 @@ int main(int argc, char** argv) {
         flags.add("--alpha", alpha,
                   "vcm, ppm: the radius shrinks as r_i = r_1 i^((alpha - 1) / 2), alpha in (0, 1] (default 0.75)",
                   finite_in(1e-6, 1.0));
-        flags.add_choice("--sampler", sampler,
-                         {{sampler_name(SamplerKind::independent), SamplerKind::independent},
-                          {sampler_name(SamplerKind::sobol), SamplerKind::sobol}},
+        flags.add_choice("--sampler", sampler, sampler_words(),
                          "vcm, bpt, ppm: the camera subpaths' numbers, independent (as stage6's BDPT draws them) or "
                          "sobol (stage 5's scrambled Sobol points, one per iteration: the default)");
         flags.add("--mutations-per-pixel", mutations,
