@@ -4,8 +4,10 @@
 # falls on both alike. Measured, N rounds:
 #  - one thread, the two builds AT THE SAME TIME, pinned one to each of cores 0 and 1, then again
 #    with the cores swapped: the Cornell box's paths per second (stage5, MIS with Sobol samples,
-#    128 x 128 at 64 spp) and the BVH's rays per second on the bunny (stage3, the binary SAH tree
-#    and the 4-wide one). The round's ratio is the geometric mean of the two ratios new/base, which
+#    128 x 128 at 64 spp), the BVH's rays per second on the bunny (stage3, the binary SAH tree
+#    and the 4-wide one), and the photon renderers' samples per second: vertex connection and
+#    merging on the Cornell box (stage7, 64 x 64, 64 iterations) and SPPM behind the pane of glass
+#    (stage6, 128 x 96, 16 passes of 10^5 photons). The round's ratio is the geometric mean of the two ratios new/base, which
 #    cancels a difference in speed between the cores; running together, both builds meet the same
 #    spell of the machine (this one has slow spells of minutes, 0.60 against 0.74 M paths/s for one
 #    build, and at times one core slower than the other);
@@ -34,10 +36,11 @@ build() {  # REV -> prints the folder of its programs
   commit=$(git -C "$repo" rev-parse --verify "$1^{commit}")
   tree="$work/$commit"
   if [[ ! -x "$tree/build/release/bin/stage3" || ! -x "$tree/build/release/bin/stage5" ||
+        ! -x "$tree/build/release/bin/stage6" || ! -x "$tree/build/release/bin/stage7" ||
         ! -x "$tree/build/release/bin/path_error_vs_time" || ! -x "$tree/build/release/bin/stage3_bench" ]]; then
     [[ -d "$tree" ]] || git -C "$repo" worktree add --detach "$tree" "$commit" > /dev/null
     (cd "$tree" && cmake --preset release > /dev/null &&
-      cmake --build --preset release --target stage3 stage5 path_error_vs_time stage3_bench > /dev/null)
+      cmake --build --preset release --target stage3 stage5 stage6 stage7 path_error_vs_time stage3_bench > /dev/null)
   fi
   echo "$tree/build/release/bin"
 }
@@ -60,6 +63,10 @@ measure() {
                --width 128 --height 128 --spp 64 --threads 1 2>&1 | rate ;;
     binary | wide) taskset -c "$core" "$bin/stage3" --scene "$repo/assets/scenes/bunny.json" --out "$out/$core.pfm" \
                --spp 16 --threads 1 $([[ $what == wide ]] && echo --wide) 2>&1 | rate ;;
+    vcm) taskset -c "$core" "$bin/stage7" --scene "$repo/assets/scenes/cornell-box.json" --out "$out/$core.pfm" \
+               --width 64 --height 64 --spp 64 --threads 1 2>&1 | rate ;;
+    sppm) taskset -c "$core" "$bin/stage6" --method sppm --scene "$repo/assets/scenes/caustic-through-glass.json" \
+               --out "$out/$core.pfm" --width 128 --height 96 --spp 16 --threads 1 2>&1 | rate ;;
   esac
 }
 # WHAT: base and new at the same time on cores 0 and 1, then on 1 and 0; prints the four rates and
@@ -74,7 +81,7 @@ pair() {
 }
 
 for ((i = 1; i <= runs; ++i)); do
-  for what in cornell binary wide; do pair "$what"; done
+  for what in cornell binary wide vcm sppm; do pair "$what"; done
   for side in base new; do
     bin=${!side}
     "$bin/path_error_vs_time" --throughput | sed -n 's/^ *2 threads: \([0-9.]*\) M paths.*/\1/p' |
@@ -87,12 +94,13 @@ done | tee "$out/all.txt"
 
 median() { sort -g | awk '{a[NR] = $1} END {print a[int((NR + 1) / 2)]}'; }
 echo "medians over $runs rounds (base -> new; median of the rounds' ratios new/base):"
-for what in cornell binary wide; do
+for what in cornell binary wide vcm sppm; do
   line="$what, 1 thread"
   b=$(grep "^$line:" "$out/all.txt" | awk '{print $5; print $6}' | median)
   n=$(grep "^$line:" "$out/all.txt" | awk '{print $8; print $9}' | median)
   r=$(grep "^$line:" "$out/all.txt" | awk '{print $11}' | median)
-  echo "  $line (M $( [[ $what == cornell ]] && echo paths || echo rays )/s, together): $b -> $n   (${r}x)"
+  case $what in cornell) unit=paths ;; binary | wide) unit=rays ;; *) unit=samples ;; esac
+  echo "  $line (M $unit/s, together): $b -> $n   (${r}x)"
 done
 b=$(grep '^cornell, 2 threads (base)' "$out/all.txt" | sed 's/.*: //')
 n=$(grep '^cornell, 2 threads (new)' "$out/all.txt" | sed 's/.*: //')

@@ -30,8 +30,15 @@ class PhotonGrid {
   // `cell` > 0: the side of a cell, at least twice the largest radius a lookup will ask for. The
   // photons come in chunks, as the threads traced them, taken in order: joining them into one array
   // first cost more than sorting them (1.3 s a pass of 3 * 10^6 photons, a page fault per 4 KiB).
-  PhotonGrid(std::span<const std::vector<Photon>> chunks, float cell);
+  PhotonGrid(std::span<const std::vector<Photon>> chunks, float cell) { assign(chunks, cell); }
   PhotonGrid(const std::vector<Photon>& photons, float cell) : PhotonGrid(std::span(&photons, 1), cell) {}
+  PhotonGrid() : PhotonGrid(std::vector<Photon>{}, 1.0f) {}  // no photons
+
+  // The grid of new photons, in the memory of the old ones: a renderer that builds one grid per
+  // pass keeps it, and pays for fresh pages only when a pass has more photons than any before. A
+  // grid built anew each iteration cost stage 7's VCM some 340 page faults an iteration on the
+  // 64 x 64 Cornell box, and about a seventh of its time (docs/stage7.md, section 6).
+  void assign(std::span<const std::vector<Photon>> chunks, float cell);
 
   // Calls visit(photon) for each photon within `radius` of x (|p - x| <= radius), cells in a
   // fixed order and each cell's photons in the order they were traced.
@@ -69,8 +76,9 @@ class PhotonGrid {
 
   std::vector<Photon> photons_;       // sorted by bucket
   std::vector<std::uint32_t> start_;  // bucket b holds photons_[start_[b], start_[b + 1])
-  float inverse_cell_;
-  std::uint32_t mask_;
+  std::vector<std::uint32_t> next_;   // while sorting: where each bucket's next photon goes
+  float inverse_cell_ = 1.0f;
+  std::uint32_t mask_ = 0;
 };
 
 }  // namespace rt

@@ -123,6 +123,7 @@ SampleSums render_sppm(const LightingScene& scene, const Camera& camera, const R
   std::vector<VisiblePoint> visible(pixels);
   const int chunks = (options.photons_per_pass + kPhotonsPerChunk - 1) / kPhotonsPerChunk;
   std::vector<std::vector<Photon>> chunk_photons(static_cast<size_t>(chunks));
+  PhotonGrid grid;  // each pass's photons, in one grid's memory
 
   // A stop (Ctrl-C) is checked inside a pass, per tile and per chunk of photons, since one pass of
   // 10^7 photons takes many seconds: a pass it cuts short is dropped whole, and the image is made
@@ -165,7 +166,7 @@ SampleSums render_sppm(const LightingScene& scene, const Camera& camera, const R
         });
         if (interrupt_requested()) return;
         if (max_radius > 0.0f) {
-          const PhotonGrid grid(chunk_photons, 2.0f * max_radius);
+          grid.assign(chunk_photons, 2.0f * max_radius);
           if (interrupt_requested()) return;
           parallel_for_tiles(width, height, threads, [&](const PixelRect& tile) {
             for (int y = tile.y0; y < tile.y1; ++y)

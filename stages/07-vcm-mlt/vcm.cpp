@@ -208,9 +208,9 @@ class LightSubpaths {
     const size_t j = size_t(std::upper_bound(chunk.begin.begin(), chunk.begin.end(), local) - chunk.begin.begin()) - 1;
     return {chunk.path(j), int(local - chunk.begin[j]) + 1};
   }
-  // Every light vertex that can merge (not the light's own, not a delta one), as a photon.
-  std::vector<Photon> photons() const {
-    std::vector<Photon> out;
+  // Every light vertex that can merge (not the light's own, not a delta one), as a photon, in `out`.
+  void photons(std::vector<Photon>& out) const {
+    out.clear();
     for (size_t c = 0; c < chunks_.size(); ++c) {
       const LightChunk& chunk = chunks_[c];
       for (size_t j = 0; j + 1 < chunk.begin.size(); ++j)
@@ -220,7 +220,6 @@ class LightSubpaths {
             out.push_back(Photon{y.point(), y.direction_to(chunk.vertices[v - 1]), y.beta, first_vertex_[c] + v});
         }
     }
-    return out;
   }
 
  private:
@@ -334,6 +333,8 @@ SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const Re
   std::vector<DVec3> splatted(pixels, DVec3(0.0));  // the splats landing in it, summed
   std::vector<Color> this_film(pixels);
   std::vector<DVec3> this_splatted(pixels);
+  std::vector<Photon> photons;  // each iteration's, and their grid: kept, their memory reused
+  PhotonGrid grid;
   std::uint32_t iterations = 0;
   for (int i = 0; i < settings.spp && !interrupt_requested(); ++i) {
     VcmTechniques on = techniques_of(options.mode);
@@ -356,8 +357,10 @@ SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const Re
     });
     if (interrupt_requested()) break;
     const LightSubpaths all(chunk);
-    std::optional<PhotonGrid> grid;
-    if (on.merge) grid.emplace(all.photons(), 2.0f * radius);
+    if (on.merge) {
+      all.photons(photons);
+      grid.assign(std::span(&photons, 1), 2.0f * radius);
+    }
 
     // The camera subpaths, one per pixel, each against its own light subpath and the grid.
     const bool camera_paths = on.hit_light || on.connect || on.merge;
@@ -368,7 +371,8 @@ SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const Re
           const size_t p = size_t(y) * size_t(width) + size_t(x);
           Color sum(0.0f);
           const auto sample = [&](const Ray& ray, Sampler& sampler) {
-            return guard(iteration.camera_sample(ray, sampler, all.path(p), all, grid ? &*grid : nullptr, camera_path));
+            return guard(
+                iteration.camera_sample(ray, sampler, all.path(p), all, on.merge ? &grid : nullptr, camera_path));
           };
           if (camera_paths && options.camera_sampler == SamplerKind::sobol)
             add_pixel_samples<SobolSampler>(camera, filter, settings, x, y, i, i + 1, sample, sum);

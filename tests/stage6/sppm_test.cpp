@@ -104,6 +104,29 @@ TEST(PhotonGrid, FarPointsAndEmptyGrids) {
   EXPECT_THROW(PhotonGrid(std::vector<Photon>{}, 0.0f), std::invalid_argument);
 }
 
+TEST(PhotonGrid, AssignedAgainItHoldsOnlyTheNewPhotons) {
+  // A renderer keeps one grid and assigns each pass's photons to it: nothing of a larger pass, its
+  // photons or its buckets, may show through a smaller one built with another cell size.
+  std::vector<Photon> many;
+  for (int i = 0; i < 1000; ++i)
+    many.push_back(Photon{Vec3(float(i % 10), float(i / 10 % 10), 0.0f) * 0.1f, Vec3(0, 0, 1), Color(float(i))});
+  PhotonGrid grid;
+  int visits = 0;
+  grid.for_each_within(Vec3(0.0f), 10.0f, [&](const Photon&) { ++visits; });
+  EXPECT_EQ(visits, 0);  // a grid made empty finds nothing
+  grid.assign(std::span(&many, 1), 0.2f);
+  grid.for_each_within(Vec3(0.0f), 10.0f, [&](const Photon&) { ++visits; });
+  EXPECT_EQ(visits, 1000);
+  const std::vector<Photon> few = {Photon{Vec3(0.05f, 0.0f, 0.0f), Vec3(0, 0, 1), Color(-1.0f)},
+                                   Photon{Vec3(0.0f, 0.3f, 0.0f), Vec3(0, 0, 1), Color(-2.0f)}};
+  grid.assign(std::span(&few, 1), 0.7f);
+  EXPECT_EQ(grid.size(), 2u);
+  std::vector<float> found;
+  grid.for_each_within(Vec3(0.0f), 0.35f, [&](const Photon& p) { found.push_back(p.power.x); });
+  EXPECT_EQ(found, (std::vector<float>{-1.0f, -2.0f}));  // both new photons, in their order, no old one
+  EXPECT_THROW(grid.assign(std::span(&few, 1), 0.0f), std::invalid_argument);
+}
+
 TEST(SppmFurnace, FindsTheClosedFormRadiance) {
   // Inside a closed cube of albedo 1/2 whose walls all emit Le = 1: L = Le / (1 - albedo) = 2
   // everywhere. The visible point sees Le, samples the direct light, and the photons bring the rest.
