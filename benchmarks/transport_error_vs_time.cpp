@@ -4,12 +4,12 @@
 // tracing, light tracing, BDPT, SPPM) on the four scenes of docs/stage6.md; stage 7: those and
 // stage 7's (VCM, multiplexed MLT, Kelemen's PSSMLT) on the same scenes and the room lit through a
 // door ajar. Each method runs at 1, 2, 4, ... samples (SPPM passes, VCM iterations, MLT mutations
-// per pixel) until a render takes longer than kBudgetSeconds, with the wall time,
-// the RMSE over the image against the scene's converged reference (assets/references/README.md)
-// and the RMSE over the region the scene is about (the caustic, the caustic behind the pane, the
-// room beyond the gap; the Cornell box: the whole image). Each picture is the method's last render
-// within kPictureSeconds (column `picture`): about the same time for every method.
-// Run through tools/make-charts.sh (stage 6 about 10 minutes on 2 cores, stage 7 about 20), or:
+// per pixel) until a render takes longer than kBudgetSeconds, the methods taking turns, with the
+// wall time, the RMSE over the image against the scene's converged reference
+// (assets/references/README.md) and the RMSE over the region the scene is about (the caustic, the
+// caustic behind the pane, the room beyond the gap; the Cornell box: the whole image). Each picture is the method's
+// last render within kPictureSeconds (column `picture`): about the same time for every method. Run through
+// tools/make-charts.sh (stage 6 about 10 minutes on 2 cores, stage 7 about 20), or:
 //   build/release/bin/transport_error_vs_time 6|7 OUT.csv IMAGE_FOLDER
 #include "06-light-transport/transport_render.h"
 #include "07-vcm-mlt/mlt.h"
@@ -18,6 +18,7 @@
 #include "common/metrics.h"
 #include "stage6/scene_regions.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -117,15 +118,25 @@ int main(int argc, char** argv) {
     Image reference = read_pfm(root + "/assets/references/" + setup.reference);
     if (setup.downsample > 1) reference = downsample(reference, setup.downsample);
     std::printf("%s:\n", setup.name);
-    for (const std::string& m : setup.methods) {
-      struct Row {
-        int spp;
-        double seconds, error, region;
-      };
+    // The methods take turns, each at 1, 2, 4, ... until its render passes the budget: renders of
+    // about the same length run minutes apart at most, so a spell in which this machine runs a
+    // fifth slower (docs/stage7.md) falls on all of them alike, not on one method's whole series.
+    struct Row {
+      int spp;
+      double seconds, error, region;
+    };
+    struct Series {
       std::vector<Row> rows;
       Image picture;
       int picture_spp = 0;
-      for (int spp = 1;; spp *= 2) {
+      bool done = false;
+    };
+    std::vector<Series> series(setup.methods.size());
+    for (int spp = 1; std::any_of(series.begin(), series.end(), [](const Series& s) { return !s.done; }); spp *= 2)
+      for (size_t i = 0; i < setup.methods.size(); ++i) {
+        Series& out = series[i];
+        if (out.done) continue;
+        const std::string& m = setup.methods[i];
         RenderSettings settings;
         settings.width = setup.width;
         settings.height = setup.height;
@@ -134,20 +145,23 @@ int main(int argc, char** argv) {
         const auto start = Clock::now();
         const Image image = render(m, scene, camera, settings, description.render.max_depth);
         const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-        rows.push_back({spp, seconds, rmse(image, reference), rmse(image, reference, setup.region)});
-        std::printf("  %-6s %6d spp %8.2f s  RMSE %.4f  region %.4f\n", m.c_str(), spp, seconds, rows.back().error,
-                    rows.back().region);
+        out.rows.push_back({spp, seconds, rmse(image, reference), rmse(image, reference, setup.region)});
+        std::printf("  %-6s %6d spp %8.2f s  RMSE %.4f  region %.4f\n", m.c_str(), spp, seconds, out.rows.back().error,
+                    out.rows.back().region);
         std::fflush(stdout);
-        if (seconds <= kPictureSeconds || picture_spp == 0) {
-          picture = image;
-          picture_spp = spp;
+        if (seconds <= kPictureSeconds || out.picture_spp == 0) {
+          out.picture = image;
+          out.picture_spp = spp;
         }
-        if (seconds > kBudgetSeconds) break;
+        out.done = seconds > kBudgetSeconds;
       }
-      for (const Row& r : rows)
+    for (size_t i = 0; i < setup.methods.size(); ++i) {
+      const std::string& m = setup.methods[i];
+      for (const Row& r : series[i].rows)
         csv << setup.name << "," << m << "," << r.spp << "," << r.seconds << "," << r.error << "," << r.region << ","
-            << (r.spp == picture_spp ? 1 : 0) << "\n";
-      write_image(std::filesystem::path(argv[2]) / ("stage" + stage + "-" + setup.name + "-" + m + ".pfm"), picture);
+            << (r.spp == series[i].picture_spp ? 1 : 0) << "\n";
+      write_image(std::filesystem::path(argv[2]) / ("stage" + stage + "-" + setup.name + "-" + m + ".pfm"),
+                  series[i].picture);
     }
   }
   return csv.good() ? 0 : 1;
