@@ -7,9 +7,10 @@
 // per pixel) until a render takes longer than kBudgetSeconds, the methods taking turns, with the
 // wall time, the RMSE over the image against the scene's converged reference
 // (assets/references/README.md) and the RMSE over the region the scene is about (the caustic, the
-// caustic behind the pane, the room beyond the gap; the Cornell box: the whole image). Each picture is the method's
-// last render within kPictureSeconds (column `picture`): about the same time for every method. Run through
-// tools/make-charts.sh (stage 6 about 10 minutes on 2 cores, stage 7 about 20), or:
+// caustic behind the pane, the room beyond the gap; the Cornell box: the whole image). Each picture
+// is the method's last render within kPictureSeconds (column `picture`): about the same time for
+// every method. Run through tools/make-charts.sh (stage 6 about 10 minutes on 2 cores, stage 7
+// about 20), or:
 //   build/release/bin/transport_error_vs_time 6|7 OUT.csv IMAGE_FOLDER
 #include "06-light-transport/transport_render.h"
 #include "07-vcm-mlt/mlt.h"

@@ -37,7 +37,7 @@ class PhotonGrid {
   // The grid of new photons, in the memory of the old ones: a renderer that builds one grid per
   // pass keeps it, and pays for fresh pages only when a pass has more photons than any before. A
   // grid built anew each iteration cost stage 7's VCM some 340 page faults an iteration on the
-  // 64 x 64 Cornell box, and about a seventh of its time (docs/stage7.md, section 6).
+  // 64 x 64 Cornell box, and about a sixth of its time (docs/stage7.md, section 6).
   void assign(std::span<const std::vector<Photon>> chunks, float cell);
 
   // Calls visit(photon) for each photon within `radius` of x (|p - x| <= radius), cells in a
