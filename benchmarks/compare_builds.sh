@@ -7,10 +7,10 @@
 #    128 x 128 at 64 spp), the BVH's rays per second on the bunny (stage3, the binary SAH tree
 #    and the 4-wide one), and the photon renderers' samples per second: vertex connection and
 #    merging on the Cornell box (stage7, 64 x 64, 64 iterations) and SPPM behind the pane of glass
-#    (stage6, 128 x 96, 16 passes of 10^5 photons). The round's ratio is the geometric mean of the two ratios new/base, which
-#    cancels a difference in speed between the cores; running together, both builds meet the same
-#    spell of the machine (this one has slow spells of minutes, 0.60 against 0.74 M paths/s for one
-#    build, and at times one core slower than the other);
+#    (stage6, 128 x 96, 16 passes of 10^5 photons). The round's ratio is the geometric mean of the
+#    two ratios new/base, which cancels a difference in speed between the cores; running together,
+#    both builds meet the same spell of the machine (this one has slow spells of minutes, 0.60
+#    against 0.74 M paths/s for one build, and at times one core slower than the other);
 #  - two threads, the builds one after the other (path_error_vs_time --throughput, 256 x 256 at
 #    64 spp, best of three): each run's ratio is taken with the other build's run next to it;
 #  - the binary SAH tree's build on the 10^6-triangle mesh, on both cores, one after the other
