@@ -26,6 +26,30 @@ const char* name_of(Mode mode) {
   return "?";
 }
 
+// The first iteration's estimates, each budget's second moment times cost (what its error squared
+// times its time would be) relative to the chosen one's.
+void print_choice(const rt::VcmChoice& choice) {
+  using namespace rt;
+  const VcmWork& w = choice.work;
+  std::printf(
+      "stage7: the first iteration's work: %llu camera vertices, %llu light points, %llu light vertices, "
+      "%llu camera links, %llu connections, %llu merges\n",
+      static_cast<unsigned long long>(w.camera_vertices), static_cast<unsigned long long>(w.light_points),
+      static_cast<unsigned long long>(w.light_vertices), static_cast<unsigned long long>(w.camera_links),
+      static_cast<unsigned long long>(w.connections), static_cast<unsigned long long>(w.merges));
+  std::printf("stage7: the first iteration's estimates of error^2 x time, relative to the chosen budget:\n");
+  size_t chosen = 0;
+  for (size_t b = 0; b < kVcmBudgetCount; ++b)
+    if (kVcmBudgets[b] == choice.budget) chosen = b;
+  const double best = choice.moments[chosen] * choice.costs[chosen];
+  for (size_t b = 0; b < kVcmBudgetCount; ++b) {
+    const double relative = choice.moments[b] * choice.costs[b] / best;
+    std::printf("  %-78s %s%s\n", describe(kVcmBudgets[b]).c_str(),
+                std::isfinite(relative) ? std::to_string(relative).substr(0, 6).c_str() : "misses light",
+                b == chosen ? "  <- chosen" : "");
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -39,6 +63,7 @@ int main(int argc, char** argv) {
   std::optional<float> large_step;
   std::optional<SamplerKind> sampler;
   std::string mutation_map;
+  std::string budget;  // empty: not given
 
   return run_stage_program(
       argc, argv, "stage7", "Stage 7: vertex connection and merging, and Metropolis light transport", options,
@@ -61,6 +86,15 @@ int main(int argc, char** argv) {
         flags.add_choice("--sampler", sampler, sampler_words(),
                          "vcm, bpt, ppm: the camera subpaths' numbers, independent (as stage6's BDPT draws them) or "
                          "sobol (stage 5's scrambled Sobol points, one per iteration: the default)");
+        std::vector<std::string> budget_words{"auto"};
+        for (const VcmBudget& b : kVcmBudgets) budget_words.push_back(budget_word(b));
+        budget_words.push_back(budget_word(kEveryTechnique));
+        flags.add_word("--budget", budget, budget_words,
+                       "vcm: auto (the default): the first iteration runs every technique and estimates which "
+                       "budget the rest should run for the least error in their time; all: every iteration runs "
+                       "every technique, one light subpath per pixel, merges everywhere, as Georgiev et al. "
+                       "publish it; pt: no light subpaths (path tracing); 1, 8: that many light subpaths per "
+                       "pixel, c: with connections, m: with merges where only they reach (1cm, 8m, ...)");
         flags.add("--mutations-per-pixel", mutations,
                   "mlt, pssmlt: the chains' steps in all, per pixel (default 100; replaces --spp)",
                   decimal_in(1, 1000000));
@@ -95,6 +129,10 @@ int main(int argc, char** argv) {
                             : "--bootstrap",
                "--mode mlt and pssmlt");
         refuse(sampler && (metropolis || mode == Mode::lt), "--sampler", "--mode vcm, bpt and ppm");
+        refuse(!budget.empty() && mode != Mode::vcm, "--budget", "--mode vcm");
+        for (const VcmBudget& b : kVcmBudgets)
+          if (budget == budget_word(b)) vcm.budget = b;
+        if (budget == "all") vcm.budget = kEveryTechnique;
         refuse(!metropolis && !mutation_map.empty(), "--mutation-map", "--mode mlt and pssmlt");
         if (!mutation_map.empty() && image_format_for(mutation_map) != ImageFormat::png)
           throw UsageError("--mutation-map: the heat map is a picture: give a .png file");
@@ -118,7 +156,7 @@ int main(int argc, char** argv) {
         RenderSettings settings = options.settings_for(description);
         if (metropolis) settings.spp = mlt.mutations_per_pixel;  // the progress bar counts steps
         mlt.max_depth = settings.max_depth;
-        check_vcm_fits(description, settings, memory_limit());
+        vcm.max_light_paths = check_vcm_fits(description, settings, memory_limit());
         if (settings.filter != PixelFilterType::box)
           throw UsageError(
               "--filter: stage7 uses the box filter (a splat lands in one pixel); other filters, from "
@@ -135,11 +173,13 @@ int main(int argc, char** argv) {
         }
         SampleGuard guard;
         MltReport report;
+        VcmChoice chosen;
         render_with_progress_and_write(
             "stage7", options, description, settings, PixelMeaning::radiance, [&](ProgressBar* progress) {
               return metropolis ? render_mlt(scene, camera, settings, mlt, options.threads, guard, progress, &report)
-                                : render_vcm(scene, camera, settings, vcm, options.threads, guard, progress);
+                                : render_vcm(scene, camera, settings, vcm, options.threads, guard, progress, &chosen);
             });
+        if (chosen.measured) print_choice(chosen);
         if (metropolis) {
           std::printf("stage7: b = %.4g +- %.2g (bootstrap and large steps), %lld steps, %.1f %% accepted\n", report.b,
                       report.b_standard_error, static_cast<long long>(report.mutations),

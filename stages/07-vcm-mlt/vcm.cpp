@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 
 namespace rt {
 
@@ -36,9 +37,9 @@ VcmTechniques techniques_of(VcmMode mode) {
     case VcmMode::bpt:
       return {.merge = false};
     case VcmMode::ppm:
-      return {.light_trace = false, .connect = false};
+      return {.light_trace = false, .next_event = false, .connect = false};
     case VcmMode::lt:
-      return {.hit_light = false, .connect = false, .merge = false};
+      return {.hit_light = false, .next_event = false, .connect = false, .merge = false};
   }
   return {};
 }
@@ -137,13 +138,21 @@ Color merge_contribution(std::span<const PathVertex> camera_path, std::span<cons
   // END TASK
 }
 
-void check_vcm_fits(const SceneDescription& description, const RenderSettings& settings, const MemoryLimit& limit) {
+int check_vcm_fits(const SceneDescription& description, const RenderSettings& settings, const MemoryLimit& limit) {
   const double pixels = double(settings.width) * double(settings.height);
-  check_scene_fits(description.source, triangle_count(description),
-                   {pixels * double(kBytesPerPixel + kVcmBytesPerPixel),
-                    "the image with an iteration's light subpaths, " +
-                        std::to_string(kBytesPerPixel + kVcmBytesPerPixel) + " bytes a pixel"},
-                   limit);
+  const auto needs = [&](int light_paths) -> OtherMemory {
+    const std::uint64_t per_pixel = kBytesPerPixel + std::uint64_t(light_paths) * kVcmBytesPerPixel;
+    return {pixels * double(per_pixel),
+            "the image with an iteration's light subpaths, " + std::to_string(per_pixel) + " bytes a pixel"};
+  };
+  constexpr int kMost = kVcmBudgets[kVcmBudgetCount - 1].light_paths;
+  try {
+    check_scene_fits(description.source, triangle_count(description), needs(kMost), limit);
+    return kMost;
+  } catch (const InputError&) {
+    check_scene_fits(description.source, triangle_count(description), needs(1), limit);
+    return 1;
+  }
 }
 
 namespace {
@@ -179,17 +188,19 @@ struct LightChunk {
   std::vector<PathVertex> vertices;
   std::vector<std::uint32_t> begin{0};
   std::vector<Splat> splats;
+  std::array<double, kVcmBudgetCount> moments{};  // the splats' terms, in the first iteration
   std::span<const PathVertex> path(size_t j) const {
     return std::span(vertices).subspan(begin[j], begin[j + 1] - begin[j]);
   }
 };
 
 // An iteration's light subpaths, left in the chunks that traced them (one copy: a light vertex
-// holds its BSDF, some 270 bytes), numbered across the chunks in order: subpath j is the one of
-// pixel j, and a vertex's number is the photon's `source`.
+// holds its BSDF, some 270 bytes), numbered across the chunks in order: subpath j < P is the one
+// pixel j connects to (those after it, when a budget traces more, only splat and merge), and a
+// vertex's number is the photon's `source`.
 class LightSubpaths {
  public:
-  explicit LightSubpaths(const std::vector<LightChunk>& chunks) : chunks_(chunks) {
+  explicit LightSubpaths(std::span<const LightChunk> chunks) : chunks_(chunks) {
     std::uint32_t first = 0;
     for (const LightChunk& c : chunks) {
       first_vertex_.push_back(first);
@@ -223,15 +234,39 @@ class LightSubpaths {
   }
 
  private:
-  const std::vector<LightChunk>& chunks_;
+  std::span<const LightChunk> chunks_;
   std::vector<std::uint32_t> first_vertex_;
+};
+
+// The first iteration's work, counted as it goes (vcm_budget.h).
+struct WorkCounters {
+  std::atomic<std::uint64_t> camera_vertices{0}, light_points{0}, light_vertices{0}, camera_links{0}, connections{0},
+      merges{0};
+  VcmWork work() const { return {camera_vertices, light_points, light_vertices, camera_links, connections, merges}; }
 };
 
 class VcmIteration {
  public:
+  // With `counters`, the first iteration of a chosen budget: it also counts its work and adds its
+  // samples' terms to each budget's second moment. With `merges_where_needed`, merges only on the
+  // paths no connection can make (vcm_budget.h).
   VcmIteration(const LightingScene& scene, const Camera& camera, const VcmOptions& options, VcmTechniques on,
-               float radius)
-      : scene_(scene), camera_(camera), options_(options), on_(on), radius_(radius) {}
+               float radius, bool merges_where_needed, WorkCounters* counters)
+      : scene_(scene),
+        camera_(camera),
+        options_(options),
+        on_(on),
+        radius_(radius),
+        merges_where_needed_(merges_where_needed),
+        counters_(counters) {}
+
+  // The sample `value` of technique `made_by`, its path's densities `path`, weighted; in the first
+  // iteration of a chosen budget, its terms added to `moments`.
+  Color weighted(std::span<const PathDensity> path, Technique made_by, const VcmTechniques& on, Color value,
+                 std::span<double> moments) const {
+    if (counters_) add_budget_moments(path, made_by, on, value, moments);
+    return value * vcm_weight(path, made_by, merges_where_needed_ ? techniques_on_path(path, made_by, on) : on);
+  }
 
   // Light subpath j: traced (in `scratch`), kept, and each vertex seen by the camera splatted.
   void trace_light_path(Rng& rng, std::vector<PathVertex>& scratch, LightChunk& out) const {
@@ -244,6 +279,7 @@ class VcmIteration {
       walk.mode = TransportMode::importance;
       random_walk(scene_, start->ray, start->beta, start->pdf_w, walk, rng, scratch);
       vertices.insert(vertices.end(), scratch.begin(), scratch.end());
+      if (counters_) counters_->light_vertices += scratch.size() - 1;
     }
     out.begin.push_back(std::uint32_t(vertices.size()));
     if (!on_.light_trace) return;
@@ -255,55 +291,65 @@ class VcmIteration {
       if (!techniques.light_trace) continue;
       const StrategySample r =
           connect_strategy(scene_, camera_, std::span(&eye, 1), path, s, 1, nullptr, options_.walk.offset);
+      if (counters_) ++counters_->camera_links;
       if (!r.film_point || r.value == Color(0.0f)) continue;
       const auto densities =
           connection_densities(scene_, camera_, std::span(&eye, 1), path, s, 1, nullptr, densities_of);
       out.splats.push_back(
-          Splat{*r.film_point, r.value * vcm_weight(densities, {Technique::connection, 1}, techniques)});
+          Splat{*r.film_point, weighted(densities, {Technique::connection, 1}, techniques, r.value, out.moments)});
     }
   }
 
-  // The camera sample along `ray`, against light subpath `light_path` and the grid of all of them.
+  // The camera sample along `ray`, against light subpath `light_path` and the grid of all of them;
+  // in the first iteration of a chosen budget, each technique's terms added to `moments`.
   Color camera_sample(const Ray& ray, Sampler& sampler, std::span<const PathVertex> light_path,
-                      const LightSubpaths& all, const PhotonGrid* grid, std::vector<PathVertex>& camera_path) const {
+                      const LightSubpaths& all, const PhotonGrid* grid, std::vector<PathVertex>& camera_path,
+                      std::span<double> moments) const {
     camera_path.assign(1, camera_vertex(camera_));
     WalkSettings walk = options_.walk;
     walk.mode = TransportMode::radiance;
     random_walk(scene_, ray, Color(1.0f), camera_direction_pdf(camera_, ray.direction), walk, sampler, camera_path);
+    if (counters_) counters_->camera_vertices += camera_path.size() - 1;
     const OffsetPolicy& offset = options_.walk.offset;
     DensityScratch scratch;
     Color radiance(0.0f);
+    const auto weigh = [&](std::span<const PathDensity> densities, Technique made_by, const VcmTechniques& on,
+                           Color value) { return weighted(densities, made_by, on, value, moments); };
     for (int t = 2; t <= int(camera_path.size()); ++t) {
       const PathVertex& z = camera_path[size_t(t - 1)];
       if (on_.hit_light && z.emitter >= 0) {
         const StrategySample r = connect_strategy(scene_, camera_, camera_path, light_path, 0, t, nullptr, offset);
         if (r.value != Color(0.0f))
-          radiance += r.value *
-                      vcm_weight(connection_densities(scene_, camera_, camera_path, light_path, 0, t, nullptr, scratch),
-                                 {Technique::connection, t}, techniques_for(on_, t - 1, options_.camera_sampler));
+          radiance += weigh(connection_densities(scene_, camera_, camera_path, light_path, 0, t, nullptr, scratch),
+                            {Technique::connection, t}, techniques_for(on_, t - 1, options_.camera_sampler), r.value);
       }
       if (z.delta) continue;
-      if (on_.connect) {
+      if (on_.next_event || on_.connect) {
         const float u_choice = sampler.uniform();
         const std::optional<PathVertex> fresh = sample_light_vertex(scene_, u_choice, sampler.uniform2());
-        for (int s = 1; s <= std::max(1, int(light_path.size())); ++s) {
+        const int last_s = on_.connect ? std::max(1, int(light_path.size())) : 1;
+        for (int s = on_.next_event ? 1 : 2; s <= last_s; ++s) {
           const PathVertex* light_point = s == 1 ? (fresh ? &*fresh : nullptr) : nullptr;
           if (s == 1 && !light_point) continue;
           const StrategySample r =
               connect_strategy(scene_, camera_, camera_path, light_path, s, t, light_point, offset);
+          if (counters_) ++(s == 1 ? counters_->light_points : counters_->connections);
           if (r.value == Color(0.0f)) continue;
-          radiance += r.value * vcm_weight(connection_densities(scene_, camera_, camera_path, light_path, s, t,
-                                                                light_point, scratch),
-                                           {Technique::connection, t}, on_);
+          radiance += weigh(connection_densities(scene_, camera_, camera_path, light_path, s, t, light_point, scratch),
+                            {Technique::connection, t}, on_, r.value);
         }
       }
-      if (grid) {
+      // Where merges are for the paths no connection makes, none is needed here if the connection
+      // (t - 1) joining z_t-2 to z_t-1 exists: every merged path it ends would have it.
+      const bool joined = (t == 2 ? on_.light_trace : on_.connect) && !camera_path[size_t(t - 2)].delta;
+      if (grid && !(merges_where_needed_ && joined)) {
         grid->for_each_within(z.point(), radius_, [&](const Photon& photon) {
+          if (counters_ && !joined) ++counters_->merges;  // a chosen budget's merges
           const auto [y_path, s] = all.vertex(photon.source);
           const Color value = merge_contribution(camera_path, y_path, s, t, on_.eta);
           if (value == Color(0.0f)) return;
-          radiance += value * vcm_weight(merge_densities(camera_, camera_path, y_path, s, t, scratch),
-                                         {Technique::merge, t}, on_);
+          radiance +=
+              weigh(merge_densities(camera_, camera_path, y_path, s, t, scratch), {Technique::merge, t}, on_, value);
         });
       }
     }
@@ -316,81 +362,151 @@ class VcmIteration {
   const VcmOptions& options_;
   VcmTechniques on_;
   float radius_;
+  bool merges_where_needed_;
+  WorkCounters* counters_;
 };
+
+// Iteration i of a budget without light subpaths: each pixel's camera subpath, with next-event
+// estimation and the light it hits weighed by the power heuristic, is stage 5's path tracer, which
+// takes it without recording its vertices; written to `this_film`.
+void render_path_iteration(const LightingScene& scene, const Camera& camera, const PixelFilter& filter,
+                           const RenderSettings& settings, const VcmOptions& options, int i, int threads,
+                           SampleGuard& guard, std::vector<Color>& this_film) {
+  const PathOptions path{.integrator = PathIntegrator::mis,
+                         .roulette_start = options.walk.roulette_start,
+                         .max_bounces = kMaxSubpathVertices - 2,
+                         .offset = options.walk.offset};
+  parallel_for_tiles(camera.width, camera.height, threads, [&](const PixelRect& tile) {
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x) {
+        Color sum(0.0f);
+        const auto sample = [&](const Ray& ray, auto& sampler) {
+          return guard(path_radiance(scene, ray, path, sampler));
+        };
+        if (options.camera_sampler == SamplerKind::sobol)
+          add_pixel_samples<SobolSampler>(camera, filter, settings, x, y, i, i + 1, sample, sum);
+        else
+          add_pixel_samples<Rng>(camera, filter, settings, x, y, i, i + 1, sample, sum);
+        this_film[size_t(y) * size_t(camera.width) + size_t(x)] = sum;
+      }
+  });
+}
 
 }  // namespace
 
 SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const RenderSettings& settings,
-                      const VcmOptions& options, int threads, SampleGuard& guard, ProgressBar* progress) {
+                      const VcmOptions& options, int threads, SampleGuard& guard, ProgressBar* progress,
+                      VcmChoice* choice) {
   const int width = camera.width, height = camera.height;
   const size_t pixels = size_t(width) * size_t(height);
   const PixelFilter filter(settings.filter);
   const float initial_radius =
       options.initial_radius > 0.0f ? options.initial_radius : default_merge_radius(scene, camera);
-  const int chunks = int((pixels + kLightPathsPerChunk - 1) / kLightPathsPerChunk);
-  std::vector<LightChunk> chunk(size_t(chunks), LightChunk{});
+  std::vector<LightChunk> chunk;
   std::vector<Color> film(pixels, Color(0.0f));     // each pixel's camera samples, summed over the iterations
   std::vector<DVec3> splatted(pixels, DVec3(0.0));  // the splats landing in it, summed
   std::vector<Color> this_film(pixels);
   std::vector<DVec3> this_splatted(pixels);
   std::vector<Photon> photons;  // each iteration's, and their grid: kept, their memory reused
   PhotonGrid grid;
+  // Every technique and one light subpath per pixel; in --mode vcm the first iteration also measures
+  // what each budget would cost and how noisy it would be, and the rest (if any) run the cheapest.
+  const bool choose = !options.budget && options.mode == VcmMode::vcm && settings.spp > 1;
+  VcmChoice chosen;
+  if (options.mode == VcmMode::vcm && options.budget) chosen.budget = *options.budget;
+  VcmBudget& budget = chosen.budget;
+  WorkCounters counters;
+  std::vector<double> camera_moments;  // the first iteration's, kVcmBudgetCount per pixel
   std::uint32_t iterations = 0;
   for (int i = 0; i < settings.spp && !interrupt_requested(); ++i) {
-    VcmTechniques on = techniques_of(options.mode);
-    const float radius = merge_radius(initial_radius, i + 1, options.alpha);
-    on.eta = float(double(pixels) * double(kPi) * double(radius) * double(radius));
-    const VcmIteration iteration(scene, camera, options, on, radius);
-
-    // The light subpaths, chunk by chunk, then in one list in chunk order.
-    parallel_for(chunks, threads, [&](int c) {
-      LightChunk& out = chunk[size_t(c)];
-      out.vertices.clear();
-      out.begin.assign(1, 0);
-      out.splats.clear();
-      std::vector<PathVertex> scratch;
-      const size_t first = size_t(c) * kLightPathsPerChunk, last = std::min(pixels, first + kLightPathsPerChunk);
-      for (size_t j = first; j < last && !interrupt_requested(); ++j) {
-        Rng rng(settings.seed, kLightStream, std::uint64_t(i) * pixels + j);
-        iteration.trace_light_path(rng, scratch, out);
-      }
-    });
-    if (interrupt_requested()) break;
-    const LightSubpaths all(chunk);
-    if (on.merge) {
-      all.photons(photons);
-      grid.assign(std::span(&photons, 1), 2.0f * radius);
-    }
-
-    // The camera subpaths, one per pixel, each against its own light subpath and the grid.
-    const bool camera_paths = on.hit_light || on.connect || on.merge;
-    parallel_for_tiles(width, height, threads, [&](const PixelRect& tile) {
-      std::vector<PathVertex> camera_path;
-      for (int y = tile.y0; y < tile.y1; ++y)
-        for (int x = tile.x0; x < tile.x1; ++x) {
-          const size_t p = size_t(y) * size_t(width) + size_t(x);
-          Color sum(0.0f);
-          const auto sample = [&](const Ray& ray, Sampler& sampler) {
-            return guard(
-                iteration.camera_sample(ray, sampler, all.path(p), all, on.merge ? &grid : nullptr, camera_path));
-          };
-          if (camera_paths && options.camera_sampler == SamplerKind::sobol)
-            add_pixel_samples<SobolSampler>(camera, filter, settings, x, y, i, i + 1, sample, sum);
-          else if (camera_paths)
-            add_pixel_samples<Rng>(camera, filter, settings, x, y, i, i + 1, sample, sum);
-          this_film[p] = sum;
-        }
-    });
-    if (interrupt_requested()) break;
-    // Pixel j's light-tracing estimate is (P / N_L) times its splats' sum, one light subpath per
-    // pixel: each iteration's splats count once (camera_importance.h).
+    const bool first = choose && i == 0;
+    if (first) camera_moments.assign(pixels * kVcmBudgetCount, 0.0);
     std::fill(this_splatted.begin(), this_splatted.end(), DVec3(0.0));
-    for (const LightChunk& c : chunk)
-      for (const Splat& splat : c.splats) {
-        const int x = int(splat.film_point.x), y = int(splat.film_point.y);
-        if (x < 0 || x >= width || y < 0 || y >= height) continue;
-        this_splatted[size_t(y) * size_t(width) + size_t(x)] += DVec3(guard(splat.value));
+    if (budget.light_paths == 0) {
+      render_path_iteration(scene, camera, filter, settings, options, i, threads, guard, this_film);
+      if (interrupt_requested()) break;
+    } else {
+      const float radius = merge_radius(initial_radius, i + 1, options.alpha);
+      VcmTechniques on = techniques_of(options.mode);
+      on.eta = float(double(pixels) * double(kPi) * double(radius) * double(radius));
+      on = techniques_within(on, budget);
+      const size_t light_paths = pixels * size_t(budget.light_paths);
+      const int chunks = int((light_paths + kLightPathsPerChunk - 1) / kLightPathsPerChunk);
+      if (chunk.size() < size_t(chunks)) chunk.resize(size_t(chunks));
+      const std::span<LightChunk> used = std::span(chunk).first(size_t(chunks));
+      const VcmIteration iteration(scene, camera, options, on, radius, budget.merge == Merging::where_needed,
+                                   first ? &counters : nullptr);
+
+      // The light subpaths, chunk by chunk, then in one list in chunk order. Subpath j of
+      // iteration i draws from stream i N_L + j: no two subpaths of a render share one, also when
+      // the first iteration's N_L differs from the rest's.
+      parallel_for(chunks, threads, [&](int c) {
+        LightChunk& out = used[size_t(c)];
+        out.vertices.clear();
+        out.begin.assign(1, 0);
+        out.splats.clear();
+        out.moments.fill(0.0);
+        std::vector<PathVertex> scratch;
+        const size_t begin = size_t(c) * kLightPathsPerChunk, end = std::min(light_paths, begin + kLightPathsPerChunk);
+        for (size_t j = begin; j < end && !interrupt_requested(); ++j) {
+          Rng rng(settings.seed, kLightStream, std::uint64_t(i) * light_paths + j);
+          iteration.trace_light_path(rng, scratch, out);
+        }
+      });
+      if (interrupt_requested()) break;
+      const LightSubpaths all{std::span<const LightChunk>(used)};
+      if (on.merge) {
+        all.photons(photons);
+        grid.assign(std::span(&photons, 1), 2.0f * radius);
       }
+
+      // The camera subpaths, one per pixel, each against its own light subpath and the grid.
+      const bool camera_paths = on.hit_light || on.connect || on.merge;
+      parallel_for_tiles(width, height, threads, [&](const PixelRect& tile) {
+        std::vector<PathVertex> camera_path;
+        for (int y = tile.y0; y < tile.y1; ++y)
+          for (int x = tile.x0; x < tile.x1; ++x) {
+            const size_t p = size_t(y) * size_t(width) + size_t(x);
+            const std::span<double> moments =
+                first ? std::span(camera_moments).subspan(p * kVcmBudgetCount, kVcmBudgetCount) : std::span<double>{};
+            Color sum(0.0f);
+            const auto sample = [&](const Ray& ray, Sampler& sampler) {
+              return guard(iteration.camera_sample(ray, sampler, all.path(p), all, on.merge ? &grid : nullptr,
+                                                   camera_path, moments));
+            };
+            if (camera_paths && options.camera_sampler == SamplerKind::sobol)
+              add_pixel_samples<SobolSampler>(camera, filter, settings, x, y, i, i + 1, sample, sum);
+            else if (camera_paths)
+              add_pixel_samples<Rng>(camera, filter, settings, x, y, i, i + 1, sample, sum);
+            this_film[p] = sum;
+          }
+      });
+      if (interrupt_requested()) break;
+      // Pixel j's light-tracing estimate is its splats' sum over the N_L / P light subpaths per
+      // pixel (camera_importance.h): each iteration's splats count P / N_L times.
+      for (const LightChunk& c : used)
+        for (const Splat& splat : c.splats) {
+          const int x = int(splat.film_point.x), y = int(splat.film_point.y);
+          if (x < 0 || x >= width || y < 0 || y >= height) continue;
+          this_splatted[size_t(y) * size_t(width) + size_t(x)] +=
+              DVec3(guard(splat.value)) / double(budget.light_paths);
+        }
+      if (first) {
+        // Every budget's second moment, summed in a fixed order: the pixels', then the chunks' splats.
+        std::array<double, kVcmBudgetCount> moments{};
+        for (size_t p = 0; p < pixels; ++p)
+          for (size_t b = 0; b < kVcmBudgetCount; ++b) moments[b] += camera_moments[p * kVcmBudgetCount + b];
+        for (const LightChunk& c : used)
+          for (size_t b = 0; b < kVcmBudgetCount; ++b) moments[b] += c.moments[b];
+        const VcmWork work = counters.work();
+        budget = cheapest_budget(moments, work, options.max_light_paths);
+        chosen.measured = true;
+        chosen.work = work;
+        chosen.moments = moments;
+        for (size_t b = 0; b < kVcmBudgetCount; ++b) chosen.costs[b] = iteration_cost(work, kVcmBudgets[b]);
+        camera_moments = {};
+      }
+    }
     for (size_t p = 0; p < pixels; ++p) {
       film[p] += this_film[p];
       splatted[p] += this_splatted[p];
@@ -398,6 +514,7 @@ SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const Re
     ++iterations;
     if (progress) progress->advance(pixels);
   }
+  if (choice) *choice = chosen;
   SampleSums sums(width, height);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {

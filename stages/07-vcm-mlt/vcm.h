@@ -1,7 +1,7 @@
 // Stage 7: vertex connection and merging (vcm_weight.h has the estimator's weights). An iteration
-// traces N light subpaths (one per pixel), connects each light vertex to the camera (light
-// tracing, splatted), and stores the vertices in stage 6's photon grid; then one camera subpath
-// per pixel, and at each of its vertices z:
+// traces N light subpaths (one per pixel, or as many as its budget asks: vcm_budget.h), connects
+// each light vertex to the camera (light tracing, splatted), and stores the vertices in stage 6's
+// photon grid; then one camera subpath per pixel, and at each of its vertices z:
 //   - the light it hits (s = 0), a fresh light point (s = 1, next-event estimation), and the
 //     connections to every vertex of its own pixel's light subpath (stage 6's BDPT strategies);
 //   - a merge with every light vertex y within r of z: z's throughput, f at z, y's throughput,
@@ -10,17 +10,20 @@
 // Zwicker, "Progressive Photon Mapping: A Probabilistic Approach", 2011), so the merges' bias
 // vanishes and the estimator stays consistent. Switching techniques off makes the same code one
 // of stage 6's methods: --mode bpt (no merges), ppm (merges and the light the camera hits), lt
-// (only light tracing).
+// (only light tracing); in --mode vcm the first iteration chooses which the rest run.
 #pragma once
 
 #include "05-path-tracing/path_render.h"
 #include "05-path-tracing/path_tracer.h"
 #include "06-light-transport/bdpt.h"
 #include "06-light-transport/photon_grid.h"
+#include "07-vcm-mlt/vcm_budget.h"
 #include "07-vcm-mlt/vcm_weight.h"
 #include "common/memory_limit.h"
 #include "common/progress.h"
 #include "common/sample_sums.h"
+
+#include <optional>
 
 namespace rt {
 
@@ -40,6 +43,10 @@ struct VcmOptions {
   // its first bounces as stage 5's path tracer does; or independent numbers, as stage 6's BDPT
   // draws them. The light subpaths are shared by all pixels and stay independent.
   SamplerKind camera_sampler = SamplerKind::sobol;
+  // --mode vcm: every iteration's budget; none: the first runs kEveryTechnique and chooses the
+  // rest's (vcm_budget.h). The other modes run kEveryTechnique, less what they leave out.
+  std::optional<VcmBudget> budget;
+  int max_light_paths = 8;  // the most light subpaths per pixel the memory holds (check_vcm_fits)
   WalkSettings walk;
 };
 
@@ -73,21 +80,24 @@ std::span<const PathDensity> merge_densities(const Camera& camera, std::span<con
 Color merge_contribution(std::span<const PathVertex> camera_path, std::span<const PathVertex> light_path, int s, int t,
                          float eta);
 
-// Throws InputError, before the scene is built, for a render that could not hold within `limit`:
-// every stage's kBytesPerPixel and an iteration's light subpaths (one per pixel, each vertex some
-// 270 bytes with its BSDF), their photons and splats, measured as peak resident memory
+// The most light subpaths per pixel (1 or 8, vcm_budget.h) a render can hold within `limit`;
+// throws InputError, before the scene is built, for a render that could not hold one: every
+// stage's kBytesPerPixel and, per light subpath per pixel, an iteration's light subpaths (each
+// vertex some 270 bytes with its BSDF), their photons and splats, measured as peak resident memory
 // (/usr/bin/time, 128^2 and 512^2 pixels): 1.4 KiB a pixel in the Cornell box, 2.1 in the closed
 // bright room of light-through-gap.json (longer subpaths), 0.75 in the caustic scene; 2.5 KiB
 // covers them.
 inline constexpr std::uint64_t kVcmBytesPerPixel = 2560;
-void check_vcm_fits(const SceneDescription& description, const RenderSettings& settings, const MemoryLimit& limit);
+int check_vcm_fits(const SceneDescription& description, const RenderSettings& settings, const MemoryLimit& limit);
 
 // Per pixel of the image: the sum over the finished iterations of each one's estimate (its camera
 // sample, its merges, and the light-tracing splats landing there), and their number. The same bit for
 // bit for any thread count: light subpaths are traced in fixed chunks, their splats and photons
 // taken in chunk order, and the grid visited in its fixed order. A stop request ends it between
-// iterations (one cut short is dropped). The box filter only (a splat lands in one pixel).
+// iterations (one cut short is dropped). The box filter only (a splat lands in one pixel). With
+// `choice`, what the first iteration measured and chose.
 SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const RenderSettings& settings,
-                      const VcmOptions& options, int threads, SampleGuard& guard, ProgressBar* progress = nullptr);
+                      const VcmOptions& options, int threads, SampleGuard& guard, ProgressBar* progress = nullptr,
+                      VcmChoice* choice = nullptr);
 
 }  // namespace rt

@@ -31,9 +31,13 @@ struct PathDensity {
 struct VcmTechniques {
   bool hit_light = true;    // the camera subpath reaches the light (t = k + 1)
   bool light_trace = true;  // a light vertex seen by the pinhole (t = 1), splatted
-  bool connect = true;      // the connections with 2 <= t <= k (next-event estimation is t = k)
+  bool next_event = true;   // a fresh point on a light joined to x_t-1 (t = k, s = 1)
+  bool connect = true;      // the connections to the light subpath's vertices (2 <= t <= k - 1)
   bool merge = true;        // merges at x_1 ... x_k-1
-  float eta = 0.0f;         // N pi r^2: light subpaths per iteration times the merge disk's area
+  // Light subpaths per pixel and iteration: the light-tracing technique's number of samples (each
+  // pixel's camera subpath connects to one light subpath, and merges with all of them).
+  float light_paths = 1.0f;
+  float eta = 0.0f;  // N pi r^2: light subpaths per iteration times the merge disk's area
 };
 
 // Which technique made the path: a connection with `t` camera vertices, or a merge at x_t-1 (the
@@ -43,12 +47,22 @@ struct Technique {
   int t;
 };
 
-// Task stage7.vcm.weight. The power heuristic weight of `made_by` for the path whose vertices'
-// densities are `path` (x_0 ... x_k, k >= 1), over every technique of `on` that can make it:
-// a connection t needs 1 <= t <= k + 1 and neither x_t-1 nor x_t (where t <= k) delta; a merge at
-// x_i needs 1 <= i <= k - 1 and x_i not delta. 0 if `made_by` itself is not one of them. A density
-// of 0 (a direction a BSDF cannot sample) stands for 1, as in stage 6's strategy_weight. With
-// merging off it is stage 6's strategy_weight of the same path (a test checks it).
+// Task stage7.vcm.weight. The densities of every technique of `on` that can make the path whose
+// vertices' densities are `path` (x_0 ... x_k, k >= 1), each times its number of samples per pixel
+// (n p: the light-tracing technique has light_paths, a merge's eta is in its density), relative to
+// the connection that made it or shares its t: a connection t needs 1 <= t <= k + 1 and neither
+// x_t-1 nor x_t (where t <= k) delta; a merge at x_i needs 1 <= i <= k - 1 and x_i not delta.
+// `own` is `made_by`'s, 0 if it is not one of them. A density of 0 (a direction a BSDF cannot
+// sample) stands for 1, as in stage 6's strategy_weight.
+struct TechniqueDensities {
+  double own = 0.0;             // n p of made_by
+  double sum = 0.0;             // sum over the techniques of n p: the balance heuristic's denominator
+  double sum_of_squares = 0.0;  // sum of (n p)^2: the power heuristic's
+};
+TechniqueDensities technique_densities(std::span<const PathDensity> path, Technique made_by, const VcmTechniques& on);
+
+// The power heuristic weight of `made_by`, own^2 / sum_of_squares (0 where no technique makes the
+// path). With merging off it is stage 6's strategy_weight of the same path (a test checks it).
 float vcm_weight(std::span<const PathDensity> path, Technique made_by, const VcmTechniques& on);
 
 }  // namespace rt

@@ -30,11 +30,31 @@ Image render_mode(const testing::LoadedScene& s, VcmOptions options, int spp, st
   });
 }
 
+// Every technique in every iteration (--budget all): the estimator as Georgiev et al. publish it.
 VcmOptions mode(VcmMode m, SamplerKind camera_sampler = SamplerKind::sobol) {
   VcmOptions options;
   options.mode = m;
   options.camera_sampler = camera_sampler;
+  options.budget = kEveryTechnique;
   return options;
+}
+
+// --mode vcm with the budget the first iteration chooses (the default).
+VcmOptions chosen_budget() { return VcmOptions{}; }
+
+// The budget that a render of `spp` iterations chose, as (light subpaths, connections, merges).
+std::tuple<int, bool, bool> budget_chosen(const testing::LoadedScene& s, int spp, int threads = 2) {
+  return testing::subject([&] {
+    RenderSettings settings;
+    settings.width = s.camera.width;
+    settings.height = s.camera.height;
+    settings.spp = spp;
+    SampleGuard guard;
+    VcmChoice choice;
+    render_vcm(s.scene, s.camera, settings, chosen_budget(), threads, guard, nullptr, &choice);
+    const VcmBudget& b = choice.budget;
+    return std::make_tuple(b.light_paths, b.connect, b.merge == Merging::where_needed);
+  });
 }
 
 TEST(MergeRadius, ShrinksAsKnausAndZwicker) {
@@ -63,6 +83,15 @@ void expect_agreement(const VcmOptions& options, int spp, int runs, double bias_
 }
 
 TEST(VcmCornell, VertexConnectionAndMergingFindsTheReference) { expect_agreement(mode(VcmMode::vcm), 4, 16, 0.0); }
+TEST(VcmCornell, ABudgetChosenByTheFirstIterationFindsTheReference) {
+  // On the Cornell box the light subpaths, connections and merges cost more than they save: the
+  // first iteration picks the path tracer for the rest (measured: the next best budget's estimated
+  // error^2 x time is 1.5 times the path tracer's), and the image still finds the reference.
+  EXPECT_EQ(budget_chosen(testing::cornell_box<64, 64>(), 2), std::make_tuple(0, false, false));
+  testing::expect_cornell_agreement(
+      [&](std::uint64_t seed) { return render_mode(testing::cornell_box<64, 64>(), chosen_budget(), 4, seed); }, 16,
+      0.0, "vcm, chosen budget");
+}
 TEST(VcmCornell, LightTracingModeFindsTheReference) { expect_agreement(mode(VcmMode::lt), 8, 16, 0.0); }
 TEST(VcmCornell, PhotonMappingModeFindsTheReferenceWithinItsBias) { expect_agreement(mode(VcmMode::ppm), 8, 16, 0.02); }
 
@@ -116,6 +145,33 @@ TEST(VcmRender, SameImageForAnyThreadCount) {
       const Image one = render_mode(c, mode(m, sampler), 3, 7, 1), two = render_mode(c, mode(m, sampler), 3, 7, 2);
       EXPECT_TRUE(one == two) << mode_name(m) << ", " << sampler_name(sampler);
     }
+  // A chosen budget: the same choice, and the same image, on the box (the path tracer) and behind
+  // the pane of glass (eight light subpaths a pixel after the first iteration's one).
+  static const testing::LoadedScene glass("assets/scenes/caustic-through-glass.json", 48, 36);
+  for (const testing::LoadedScene* s : {&c, &glass}) {
+    EXPECT_EQ(budget_chosen(*s, 2, 1), budget_chosen(*s, 2, 2));
+    EXPECT_TRUE(render_mode(*s, chosen_budget(), 3, 7, 1) == render_mode(*s, chosen_budget(), 3, 7, 2))
+        << s->description.source;
+  }
+}
+
+TEST(VcmRender, WithoutLightSubpathsItIsStage5sPathTracer) {
+  // A budget of no light subpaths hands the camera subpaths to stage 5's path tracer, iteration i
+  // taking Sobol point i of each pixel as stage 5's sample i does: the same image, bit for bit.
+  const testing::LoadedScene& c = testing::cornell_box<40, 30>();
+  VcmOptions no_light_subpaths;
+  no_light_subpaths.budget = VcmBudget{0, false, Merging::none};
+  RenderSettings settings;
+  settings.width = c.camera.width;
+  settings.height = c.camera.height;
+  settings.spp = 5;
+  settings.seed = 11;
+  const auto [vcm, path_traced] = testing::subject([&] {
+    SampleGuard guard;
+    return std::make_pair(render_vcm(c.scene, c.camera, settings, no_light_subpaths, 2, guard).mean(),
+                          render_paths(c.scene, c.camera, settings, PathOptions{}, SamplerKind::sobol, 2, guard));
+  });
+  EXPECT_TRUE(vcm == path_traced);
 }
 
 // The caustic seen through a pane of glass: light -> glass ball -> floor -> pane -> eye, a diffuse
@@ -129,6 +185,19 @@ TEST(VcmCaustic, MergesFindTheCausticBehindGlassWhereConnectionsCannot) {
   // Measured: vcm 1.58, bpt 0.87 (what it misses is the caustic), the reference 1.54 (made by SPPM).
   EXPECT_NEAR(vcm, expected, 0.1 * expected);
   EXPECT_LT(bpt, 0.7 * expected);
+}
+
+TEST(VcmCaustic, ABudgetChosenBehindGlassKeepsItsMergesAndFindsTheCaustic) {
+  // Only merges reach the caustic behind the pane, so the chosen budget keeps them there, with
+  // eight light subpaths a pixel (measured: the next best, one subpath a pixel with connections
+  // and merges, has 2.2 times its estimated error^2 x time).
+  static const testing::LoadedScene s("assets/scenes/caustic-through-glass.json", 128, 96);
+  const Image reference = read_pfm(testing::source_path("assets/references/caustic-through-glass-128x96.pfm"));
+  const auto [light_paths, connect, merge] = budget_chosen(s, 2);
+  EXPECT_EQ(light_paths, 8);
+  EXPECT_TRUE(merge);
+  const double expected = grey(mean_over(reference, kCausticRegion));
+  EXPECT_NEAR(grey(mean_over(render_mode(s, chosen_budget(), 16, 3), kCausticRegion)), expected, 0.1 * expected);
 }
 
 }  // namespace

@@ -77,8 +77,9 @@ std::vector<PathDensity> random_path(std::mt19937& random, int k) {
   return path;
 }
 
-// The techniques of `on` that make the path, and each one's density written out in full (0 for
-// one that cannot): p_t = prod_(j < t) pc_j prod_(j >= t) pl_j, a merge at x_i eta pl_i p_i+1.
+// The techniques of `on` that make the path, and each one's density times its samples written out
+// in full (0 for one that cannot): p_t = prod_(j < t) pc_j prod_(j >= t) pl_j (light_paths times
+// it for t = 1), a merge at x_i eta pl_i p_i+1.
 std::vector<double> full_densities(const std::vector<PathDensity>& x, const VcmTechniques& on) {
   const int k = int(x.size()) - 1;
   const auto remap = [](float p) { return double(p != 0.0f ? p : 1.0f); };
@@ -96,10 +97,14 @@ std::vector<double> full_densities(const std::vector<PathDensity>& x, const VcmT
     } else if (t == k + 1) {
       exists = on.hit_light && !x[size_t(k)].delta;
     } else {
-      exists = (t == 1 ? on.light_trace : on.connect) && !x[size_t(t - 1)].delta && !x[size_t(t)].delta;
+      exists = (t == 1   ? on.light_trace
+                : t == k ? on.next_event
+                         : on.connect) &&
+               !x[size_t(t - 1)].delta && !x[size_t(t)].delta;
     }
-    const double p =
-        m.kind == Technique::merge ? double(on.eta) * remap(x[size_t(t - 1)].light) * connection(t) : connection(t);
+    const double p = m.kind == Technique::merge ? double(on.eta) * remap(x[size_t(t - 1)].light) * connection(t)
+                     : t == 1                   ? double(on.light_paths) * connection(t)
+                                                : connection(t);
     out.push_back(exists ? p : 0.0);
   }
   return out;
@@ -115,15 +120,23 @@ TEST(VcmWeight, EveryTechniqueOfARandomPathIsThePowerHeuristicAndTheySumToOne) {
     const VcmMode mode = kVcmModes[size_t(n / 5) % 4];
     VcmTechniques on = techniques_of(mode);
     on.eta = std::pow(10.0f, log_eta(random));
+    // Some with eight light subpaths per pixel, some without next-event estimation (a budget's).
+    if (n % 3 == 1) on.light_paths = 8.0f;
+    if (n % 7 == 2) on.next_event = false;
     std::vector<PathDensity> path = random_path(random, k);
     cases.emplace_back("path " + std::to_string(n) + " (" + mode_name(mode) + ", k = " + std::to_string(k) + ")",
                        full_densities(path, on), std::move(path), on);
   }
-  const std::vector<std::vector<float>> weights = testing::subject([&] {
-    std::vector<std::vector<float>> out;
+  // Per case and technique: the power heuristic's weight and the balance heuristic's, n p / sum n p
+  // (technique_densities' own / sum, what a budget's second moments use).
+  const std::vector<std::vector<std::pair<float, double>>> weights = testing::subject([&] {
+    std::vector<std::vector<std::pair<float, double>>> out;
     for (const auto& [what, densities, path, on] : cases) {
-      std::vector<float> w;
-      for (const Technique m : every_technique(int(path.size()) - 1)) w.push_back(vcm_weight(path, m, on));
+      std::vector<std::pair<float, double>> w;
+      for (const Technique m : every_technique(int(path.size()) - 1)) {
+        const TechniqueDensities d = technique_densities(path, m, on);
+        w.emplace_back(vcm_weight(path, m, on), d.sum > 0.0 ? d.own / d.sum : 0.0);
+      }
       out.push_back(w);
     }
     return out;
@@ -134,16 +147,22 @@ TEST(VcmWeight, EveryTechniqueOfARandomPathIsThePowerHeuristicAndTheySumToOne) {
     const auto& [what, densities, path, on] = cases[c];
     const std::vector<Technique> techniques = every_technique(int(path.size()) - 1);
     ASSERT_EQ(weights[c].size(), techniques.size()) << what;
-    double sum2 = 0.0, weight_sum = 0.0;
-    for (const double p : densities) sum2 += p * p;
+    double sum = 0.0, sum2 = 0.0, weight_sum = 0.0, balance_sum = 0.0;
+    for (const double p : densities) sum += p, sum2 += p * p;
     for (size_t i = 0; i < techniques.size(); ++i) {
+      const auto [power, balance] = weights[c][i];
       const double expected = sum2 > 0.0 ? densities[i] * densities[i] / sum2 : 0.0;
-      EXPECT_NEAR(weights[c][i], expected, 1e-5 + 1e-4 * expected) << what << ", " << describe(techniques[i]);
-      weight_sum += weights[c][i];
-      merges_weighed += techniques[i].kind == Technique::merge && weights[c][i] > 0.01f;
+      EXPECT_NEAR(power, expected, 1e-5 + 1e-4 * expected) << what << ", " << describe(techniques[i]);
+      const double expected_balance = sum > 0.0 ? densities[i] / sum : 0.0;
+      EXPECT_NEAR(balance, expected_balance, 1e-5 + 1e-4 * expected_balance)
+          << what << ", " << describe(techniques[i]) << " (balance)";
+      weight_sum += power;
+      balance_sum += balance;
+      merges_weighed += techniques[i].kind == Technique::merge && power > 0.01f;
     }
     if (sum2 > 0.0) {
       EXPECT_NEAR(weight_sum, 1.0, 1e-4) << what;
+      EXPECT_NEAR(balance_sum, 1.0, 1e-4) << what;
     }
     for (const PathDensity& d : path) with_delta += d.delta;
   }
