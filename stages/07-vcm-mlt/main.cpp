@@ -41,9 +41,10 @@ void print_choice(const rt::VcmChoice& choice) {
   size_t chosen = 0;
   for (size_t b = 0; b < kVcmBudgetCount; ++b)
     if (kVcmBudgets[b] == choice.budget) chosen = b;
-  const double best = choice.moments[chosen] * choice.costs[chosen];
+  const auto product = [&](size_t b) { return choice.moments[b] * iteration_cost(choice.work, kVcmBudgets[b]); };
+  const double best = product(chosen);
   for (size_t b = 0; b < kVcmBudgetCount; ++b) {
-    const double relative = choice.moments[b] * choice.costs[b] / best;
+    const double relative = product(b) / best;
     std::printf("  %-78s %s%s\n", describe(kVcmBudgets[b]).c_str(),
                 std::isfinite(relative) ? std::to_string(relative).substr(0, 6).c_str() : "misses light",
                 b == chosen ? "  <- chosen" : "");

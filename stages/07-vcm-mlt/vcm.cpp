@@ -368,28 +368,20 @@ class VcmIteration {
 
 // Iteration i of a budget without light subpaths: each pixel's camera subpath, with next-event
 // estimation and the light it hits weighed by the power heuristic, is stage 5's path tracer, which
-// takes it without recording its vertices; written to `this_film`.
-void render_path_iteration(const LightingScene& scene, const Camera& camera, const PixelFilter& filter,
-                           const RenderSettings& settings, const VcmOptions& options, int i, int threads,
-                           SampleGuard& guard, std::vector<Color>& this_film) {
+// takes it without recording its vertices: its sample i of each pixel, written to `this_film`.
+void render_path_iteration(const LightingScene& scene, const Camera& camera, const RenderSettings& settings,
+                           const VcmOptions& options, int i, int threads, SampleGuard& guard,
+                           std::vector<Color>& this_film) {
   const PathOptions path{.integrator = PathIntegrator::mis,
                          .roulette_start = options.walk.roulette_start,
                          .max_bounces = kMaxSubpathVertices - 2,
                          .offset = options.walk.offset};
-  parallel_for_tiles(camera.width, camera.height, threads, [&](const PixelRect& tile) {
-    for (int y = tile.y0; y < tile.y1; ++y)
-      for (int x = tile.x0; x < tile.x1; ++x) {
-        Color sum(0.0f);
-        const auto sample = [&](const Ray& ray, auto& sampler) {
-          return guard(path_radiance(scene, ray, path, sampler));
-        };
-        if (options.camera_sampler == SamplerKind::sobol)
-          add_pixel_samples<SobolSampler>(camera, filter, settings, x, y, i, i + 1, sample, sum);
-        else
-          add_pixel_samples<Rng>(camera, filter, settings, x, y, i, i + 1, sample, sum);
-        this_film[size_t(y) * size_t(camera.width) + size_t(x)] = sum;
-      }
-  });
+  RenderSettings sample_i = settings;
+  sample_i.first_sample = i;
+  sample_i.spp = 1;
+  const SampleSums sums = render_path_samples(scene, camera, sample_i, path, options.camera_sampler, threads, guard);
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) this_film[size_t(y) * size_t(camera.width) + size_t(x)] = sums.sum(x, y);
 }
 
 }  // namespace
@@ -423,7 +415,7 @@ SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const Re
     if (first) camera_moments.assign(pixels * kVcmBudgetCount, 0.0);
     std::fill(this_splatted.begin(), this_splatted.end(), DVec3(0.0));
     if (budget.light_paths == 0) {
-      render_path_iteration(scene, camera, filter, settings, options, i, threads, guard, this_film);
+      render_path_iteration(scene, camera, settings, options, i, threads, guard, this_film);
       if (interrupt_requested()) break;
     } else {
       const float radius = merge_radius(initial_radius, i + 1, options.alpha);
@@ -503,7 +495,6 @@ SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const Re
         chosen.measured = true;
         chosen.work = work;
         chosen.moments = moments;
-        for (size_t b = 0; b < kVcmBudgetCount; ++b) chosen.costs[b] = iteration_cost(work, kVcmBudgets[b]);
         camera_moments = {};
       }
     }

@@ -115,8 +115,8 @@ void add_budget_moments(std::span<const PathDensity> path, Technique made_by, co
 struct VcmChoice {
   VcmBudget budget = kEveryTechnique;  // what the iterations after the first ran
   bool measured = false;               // false: no choice was made (--budget all, another mode, 1 iteration)
-  std::array<double, kVcmBudgetCount> moments{}, costs{};  // per budget of kVcmBudgets
-  VcmWork work;                                            // what the first iteration counted
+  std::array<double, kVcmBudgetCount> moments{};  // per budget of kVcmBudgets
+  VcmWork work;                                   // what the first iteration counted (iteration_cost)
 };
 
 // The budget whose iterations reach a given error soonest: the least second moment times cost.

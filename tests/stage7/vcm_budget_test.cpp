@@ -40,13 +40,16 @@ TEST(VcmBudget, EachBudgetKeepsWhatTheModeAllowsOfItsTechniques) {
   EXPECT_TRUE(ppm.merge && ppm.hit_light);
 }
 
+// A first iteration's counts, made up.
+constexpr VcmWork kWork{.camera_vertices = 1000,
+                        .light_points = 800,
+                        .light_vertices = 3000,
+                        .camera_links = 3000,
+                        .connections = 2000,
+                        .merges = 5000};
+
 TEST(VcmBudget, AnIterationCostsWhatItsBudgetRuns) {
-  const VcmWork work{.camera_vertices = 1000,
-                     .light_points = 800,
-                     .light_vertices = 3000,
-                     .camera_links = 3000,
-                     .connections = 2000,
-                     .merges = 5000};
+  const VcmWork& work = kWork;
   const auto cost = [&](VcmBudget b) { return iteration_cost(work, b); };
   EXPECT_LT(cost({0, false, Merging::none}), cost({1, false, Merging::none}));
   EXPECT_LT(cost({1, false, Merging::none}), cost({1, true, Merging::none}));
@@ -77,12 +80,7 @@ TEST(VcmBudget, EachBudgetHasItsOwnWord) {
 }
 
 TEST(VcmBudget, TheChoiceIsTheLeastSecondMomentTimesCost) {
-  const VcmWork work{.camera_vertices = 1000,
-                     .light_points = 1000,
-                     .light_vertices = 1000,
-                     .camera_links = 1000,
-                     .connections = 1000,
-                     .merges = 1000};
+  const VcmWork& work = kWork;
   const double infinite = std::numeric_limits<double>::infinity();
   std::array<double, kVcmBudgetCount> moments{};
   // Each moment the inverse of its cost, so that all products tie at 1, but one a little lower.
