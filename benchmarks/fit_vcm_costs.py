@@ -25,10 +25,11 @@ import time
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 SCENES = ["cornell-box", "caustic", "caustic-through-glass", "light-through-gap", "door-ajar"]
 WORDS = ["1", "1m", "1c", "1cm", "8", "8m", "8c", "8cm"]
-WORK = re.compile(r"work: (\d+) camera vertices, (\d+) light points, (\d+) light vertices, (\d+) camera links, "
-                  r"(\d+) connections, (\d+) merges")
-NAMES = ["camera vertex", "light point", "light vertex + link", "connection", "merge", "photon in the grid"]
-CONSTANTS = ["CameraVertex", "LightPoint", "LightVertex", "CameraLink", "Connection", "Merge", "Photon"]
+WORK = re.compile(r"work: (\d+) camera vertices, (\d+) light points, (\d+) light subpaths, (\d+) light "
+                  r"vertices, (\d+) camera links, "
+                  r"(\d+) connections; with connections (\d+) photons and (\d+) merges, without (\d+) and (\d+)")
+NAMES = ["camera vertex", "light point", "light subpath", "light vertex + link", "connection", "merge", "photon in the grid"]
+CONSTANTS = ["CameraVertex", "LightPoint", "LightSubpath", "LightVertex", "CameraLink", "Connection", "Merge", "Photon"]
 
 
 OUT = pathlib.Path(tempfile.mkdtemp(prefix="fit_vcm_costs.")) / "image.pfm"
@@ -51,7 +52,7 @@ def per_iteration(program, scene, word):
 
 
 def solve(a, b):
-    """Least squares by the normal equations (6 unknowns), Gaussian elimination with pivoting."""
+    """Least squares by the normal equations (7 unknowns), Gaussian elimination with pivoting."""
     n = len(a[0])
     m = [[sum(r[i] * r[j] for r in a) for j in range(n)] + [sum(r[i] * y for r, y in zip(a, b))] for i in range(n)]
     for c in range(n):
@@ -75,19 +76,19 @@ def main():
         found = WORK.search(text)
         if not found:
             sys.exit(f"fit_vcm_costs: {scene}: stage7 printed no counts")
-        cam, nee, light, links, conn, merges = map(float, found.groups())
+        cam, nee, subpaths, light, links, conn, photons_c, merges_c, photons, merges = map(float, found.groups())
         for word in WORDS:
-            n = int(word[0])
-            x = [cam, nee, n * (light + links), conn if "c" in word else 0.0, n * merges if "m" in word else 0.0,
-                 n * light if "m" in word else 0.0]
+            n, c, m = int(word[0]), "c" in word, "m" in word
+            x = [cam, nee, n * subpaths, n * (light + links), conn if c else 0.0, n * (merges_c if c else merges) if m else 0.0,
+                 n * (photons_c if c else photons) if m else 0.0]
             rows.append((scene, word, x, per_iteration(program, scene, word)))
         path_tracer.append((scene, per_iteration(program, scene, "pt") / (cam + nee)))
     a = [[v / t for v in x] for _, _, x, t in rows]
     k = solve(a, [1.0] * len(rows))
     source = (ROOT / "stages" / "07-vcm-mlt" / "vcm_budget.cpp").read_text()
     used = {m.group(1): float(m.group(2)) for m in re.finditer(r"constexpr double kCost(\w+) = ([\d.]+);", source)}
-    u = [used[CONSTANTS[0]], used[CONSTANTS[1]], used[CONSTANTS[2]] + used[CONSTANTS[3]], used[CONSTANTS[4]],
-         used[CONSTANTS[5]], used[CONSTANTS[6]]]
+    u = [used[CONSTANTS[0]], used[CONSTANTS[1]], used[CONSTANTS[2]], used[CONSTANTS[3]] + used[CONSTANTS[4]],
+         used[CONSTANTS[5]], used[CONSTANTS[6]], used[CONSTANTS[7]]]
     predicted = [sum(c * v for c, v in zip(u, x)) for _, _, x, _ in rows]
     # The one scale that fits the constants in use best (relative error): seconds per camera vertex.
     scale = sum(p / t for p, (_, _, _, t) in zip(predicted, rows)) / sum((p / t) ** 2 for p, (_, _, _, t) in

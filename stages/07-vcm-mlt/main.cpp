@@ -32,11 +32,17 @@ void print_choice(const rt::VcmChoice& choice) {
   using namespace rt;
   const VcmWork& w = choice.work;
   std::printf(
-      "stage7: the first iteration's work: %llu camera vertices, %llu light points, %llu light vertices, "
-      "%llu camera links, %llu connections, %llu merges\n",
+      "stage7: the first iteration's work: %llu camera vertices, %llu light points, %llu light subpaths, %llu light "
+      "vertices, "
+      "%llu camera links, %llu connections; with connections %llu photons and %llu merges, without %llu and "
+      "%llu\n",
       static_cast<unsigned long long>(w.camera_vertices), static_cast<unsigned long long>(w.light_points),
-      static_cast<unsigned long long>(w.light_vertices), static_cast<unsigned long long>(w.camera_links),
-      static_cast<unsigned long long>(w.connections), static_cast<unsigned long long>(w.merges));
+      static_cast<unsigned long long>(w.light_subpaths), static_cast<unsigned long long>(w.light_vertices),
+      static_cast<unsigned long long>(w.camera_links), static_cast<unsigned long long>(w.connections),
+      static_cast<unsigned long long>(w.with_connections.photons),
+      static_cast<unsigned long long>(w.with_connections.merges),
+      static_cast<unsigned long long>(w.without_connections.photons),
+      static_cast<unsigned long long>(w.without_connections.merges));
   std::printf("stage7: the first iteration's estimates of error^2 x time, relative to the chosen budget:\n");
   size_t chosen = 0;
   for (size_t b = 0; b < kVcmBudgetCount; ++b)

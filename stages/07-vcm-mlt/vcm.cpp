@@ -219,17 +219,19 @@ class LightSubpaths {
     const size_t j = size_t(std::upper_bound(chunk.begin.begin(), chunk.begin.end(), local) - chunk.begin.begin()) - 1;
     return {chunk.path(j), int(local - chunk.begin[j]) + 1};
   }
-  // Every light vertex that can merge (not the light's own, not a delta one), as a photon, in `out`.
-  void photons(std::vector<Photon>& out) const {
+  // Each vertex v of each subpath that `is_photon(subpath, v)` takes, as a photon, in `out`.
+  template <class IsPhoton>
+  void photons(std::vector<Photon>& out, IsPhoton is_photon) const {
     out.clear();
     for (size_t c = 0; c < chunks_.size(); ++c) {
       const LightChunk& chunk = chunks_[c];
-      for (size_t j = 0; j + 1 < chunk.begin.size(); ++j)
-        for (std::uint32_t v = chunk.begin[j] + 1; v < chunk.begin[j + 1]; ++v) {
-          const PathVertex& y = chunk.vertices[v];
-          if (!y.delta && is_finite(y.beta))
-            out.push_back(Photon{y.point(), y.direction_to(chunk.vertices[v - 1]), y.beta, first_vertex_[c] + v});
-        }
+      for (size_t j = 0; j + 1 < chunk.begin.size(); ++j) {
+        const std::span<const PathVertex> path = chunk.path(j);
+        for (size_t v = 1; v < path.size(); ++v)
+          if (is_photon(path, v))
+            out.push_back(Photon{path[v].point(), path[v].direction_to(path[v - 1]), path[v].beta,
+                                 first_vertex_[c] + chunk.begin[j] + std::uint32_t(v)});
+      }
     }
   }
 
@@ -238,11 +240,25 @@ class LightSubpaths {
   std::vector<std::uint32_t> first_vertex_;
 };
 
+// Whether the connection that would join a merged vertex to `before`, the vertex before it on one
+// subpath, is on and can end there: then it makes every path that merge could make, and a budget
+// that merges only where needed skips the merge (vcm_budget.h). A subpath's first vertex (the
+// camera, the light's point) is joined by its own technique (light tracing, next-event
+// estimation), on or off as `first_technique` says.
+bool joined(const PathVertex& before, bool before_is_first, bool first_technique, bool connect) {
+  return (before_is_first ? first_technique : connect) && !before.delta;
+}
+
 // The first iteration's work, counted as it goes (vcm_budget.h).
 struct WorkCounters {
-  std::atomic<std::uint64_t> camera_vertices{0}, light_points{0}, light_vertices{0}, camera_links{0}, connections{0},
-      merges{0};
-  VcmWork work() const { return {camera_vertices, light_points, light_vertices, camera_links, connections, merges}; }
+  std::atomic<std::uint64_t> camera_vertices{0}, light_points{0}, light_subpaths{0}, light_vertices{0}, camera_links{0},
+      connections{0};
+  // A chosen budget's photons and merges, with connections [1] and without [0].
+  std::array<std::atomic<std::uint64_t>, 2> photons{}, merges{};
+  VcmWork work() const {
+    return {camera_vertices, light_points, light_subpaths,          light_vertices,
+            camera_links,    connections,  {photons[1], merges[1]}, {photons[0], merges[0]}};
+  }
 };
 
 class VcmIteration {
@@ -258,7 +274,8 @@ class VcmIteration {
         on_(on),
         radius_(radius),
         merges_where_needed_(merges_where_needed),
-        counters_(counters) {}
+        counters_(counters),
+        eye_(camera_vertex(camera)) {}
 
   // The sample `value` of technique `made_by`, its path's densities `path`, weighted; in the first
   // iteration of a chosen budget, its terms added to `moments`.
@@ -268,36 +285,49 @@ class VcmIteration {
     return value * vcm_weight(path, made_by, merges_where_needed_ ? techniques_on_path(path, made_by, on) : on);
   }
 
-  // Light subpath j: traced (in `scratch`), kept, and each vertex seen by the camera splatted.
-  void trace_light_path(Rng& rng, std::vector<PathVertex>& scratch, LightChunk& out) const {
-    std::vector<PathVertex>& vertices = out.vertices;
-    const size_t first = vertices.size();
+  // A light subpath: traced (in `scratch`), each vertex seen by the camera splatted, and kept in
+  // `out` where a camera vertex may use it: connected to if it is `pixels_own` (subpath j < P, the
+  // one pixel j connects to), merged with if it has a vertex in the grid. Else `out` gets it empty.
+  void trace_light_path(Rng& rng, bool pixels_own, std::vector<PathVertex>& scratch, LightChunk& out) const {
     scratch.clear();
+    if (counters_) ++counters_->light_subpaths;
     if (const std::optional<LightSubpathStart> start = start_light_subpath(scene_, rng, options_.walk.offset)) {
       scratch.push_back(start->origin);
       WalkSettings walk = options_.walk;
       walk.mode = TransportMode::importance;
       random_walk(scene_, start->ray, start->beta, start->pdf_w, walk, rng, scratch);
-      vertices.insert(vertices.end(), scratch.begin(), scratch.end());
       if (counters_) counters_->light_vertices += scratch.size() - 1;
     }
-    out.begin.push_back(std::uint32_t(vertices.size()));
+    if ((on_.connect && pixels_own) || (on_.merge && has_photon(scratch)))
+      out.vertices.insert(out.vertices.end(), scratch.begin(), scratch.end());
+    out.begin.push_back(std::uint32_t(out.vertices.size()));
     if (!on_.light_trace) return;
-    const std::span<const PathVertex> path = std::span(vertices).subspan(first);
-    const PathVertex eye = camera_vertex(camera_);
+    const std::span<const PathVertex> path = scratch;
     DensityScratch densities_of;
     for (int s = 1; s <= int(path.size()); ++s) {
       const VcmTechniques techniques = techniques_for(on_, s, options_.camera_sampler);
       if (!techniques.light_trace) continue;
       const StrategySample r =
-          connect_strategy(scene_, camera_, std::span(&eye, 1), path, s, 1, nullptr, options_.walk.offset);
+          connect_strategy(scene_, camera_, std::span(&eye_, 1), path, s, 1, nullptr, options_.walk.offset);
       if (counters_) ++counters_->camera_links;
       if (!r.film_point || r.value == Color(0.0f)) continue;
       const auto densities =
-          connection_densities(scene_, camera_, std::span(&eye, 1), path, s, 1, nullptr, densities_of);
+          connection_densities(scene_, camera_, std::span(&eye_, 1), path, s, 1, nullptr, densities_of);
       out.splats.push_back(
           Splat{*r.film_point, weighted(densities, {Technique::connection, 1}, techniques, r.value, out.moments)});
     }
+  }
+
+  // Whether light vertex v of `path` (v >= 1) goes in the grid: it can merge (not a delta one, a
+  // finite throughput) and, where merges are needed only, is not joined to the vertex before it.
+  bool is_photon(std::span<const PathVertex> path, size_t v) const {
+    return !path[v].delta && is_finite(path[v].beta) &&
+           !(merges_where_needed_ && joined(path[v - 1], v == 1, on_.next_event, on_.connect));
+  }
+  bool has_photon(std::span<const PathVertex> path) const {
+    for (size_t v = 1; v < path.size(); ++v)
+      if (is_photon(path, v)) return true;
+    return false;
   }
 
   // The camera sample along `ray`, against light subpath `light_path` and the grid of all of them;
@@ -305,7 +335,7 @@ class VcmIteration {
   Color camera_sample(const Ray& ray, Sampler& sampler, std::span<const PathVertex> light_path,
                       const LightSubpaths& all, const PhotonGrid* grid, std::vector<PathVertex>& camera_path,
                       std::span<double> moments) const {
-    camera_path.assign(1, camera_vertex(camera_));
+    camera_path.assign(1, eye_);
     WalkSettings walk = options_.walk;
     walk.mode = TransportMode::radiance;
     random_walk(scene_, ray, Color(1.0f), camera_direction_pdf(camera_, ray.direction), walk, sampler, camera_path);
@@ -339,13 +369,13 @@ class VcmIteration {
                             {Technique::connection, t}, on_, r.value);
         }
       }
-      // Where merges are for the paths no connection makes, none is needed here if the connection
-      // (t - 1) joining z_t-2 to z_t-1 exists: every merged path it ends would have it.
-      const bool joined = (t == 2 ? on_.light_trace : on_.connect) && !camera_path[size_t(t - 2)].delta;
-      if (grid && !(merges_where_needed_ && joined)) {
+      // Where merges are needed only, a camera vertex joined to the one before it merges with none.
+      // (Their grid holds only the light vertices not joined to theirs.)
+      const PathVertex& before = camera_path[size_t(t - 2)];
+      if (grid && !(merges_where_needed_ && joined(before, t == 2, on_.light_trace, on_.connect))) {
         grid->for_each_within(z.point(), radius_, [&](const Photon& photon) {
-          if (counters_ && !joined) ++counters_->merges;  // a chosen budget's merges
           const auto [y_path, s] = all.vertex(photon.source);
+          if (counters_) count_merge(before, t, y_path[size_t(s - 2)], s);
           const Color value = merge_contribution(camera_path, y_path, s, t, on_.eta);
           if (value == Color(0.0f)) return;
           radiance +=
@@ -356,7 +386,23 @@ class VcmIteration {
     return radiance;
   }
 
+  // In the first iteration, whose grid holds every photon: light vertex s (its predecessor
+  // `light_before`) for each chosen budget that would put it in the grid.
+  void count_photon(const PathVertex& light_before, int s) const {
+    for (const bool connect : {false, true})
+      if (!joined(light_before, s == 2, on_.next_event, connect)) ++counters_->photons[connect];
+  }
+
  private:
+  // In the first iteration: the merge of camera vertex t with light vertex s (their predecessors
+  // `camera_before`, `light_before`), for each chosen budget that would make it.
+  void count_merge(const PathVertex& camera_before, int t, const PathVertex& light_before, int s) const {
+    for (const bool connect : {false, true})
+      if (!joined(camera_before, t == 2, on_.light_trace, connect) &&
+          !joined(light_before, s == 2, on_.next_event, connect))
+        ++counters_->merges[connect];
+  }
+
   const LightingScene& scene_;
   const Camera& camera_;
   const VcmOptions& options_;
@@ -364,6 +410,7 @@ class VcmIteration {
   float radius_;
   bool merges_where_needed_;
   WorkCounters* counters_;
+  PathVertex eye_;  // the pinhole's vertex, where every camera subpath starts
 };
 
 // Iteration i of a budget without light subpaths: each pixel's camera subpath, with next-event
@@ -442,14 +489,19 @@ SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const Re
         const size_t begin = size_t(c) * kLightPathsPerChunk, end = std::min(light_paths, begin + kLightPathsPerChunk);
         for (size_t j = begin; j < end && !interrupt_requested(); ++j) {
           Rng rng(settings.seed, kLightStream, std::uint64_t(i) * light_paths + j);
-          iteration.trace_light_path(rng, scratch, out);
+          iteration.trace_light_path(rng, j < pixels, scratch, out);
         }
       });
       if (interrupt_requested()) break;
       const LightSubpaths all{std::span<const LightChunk>(used)};
       if (on.merge) {
-        all.photons(photons);
+        all.photons(photons, [&](std::span<const PathVertex> path, size_t v) { return iteration.is_photon(path, v); });
         grid.assign(std::span(&photons, 1), 2.0f * radius);
+        if (first)
+          for (const Photon& photon : photons) {
+            const auto [y_path, s] = all.vertex(photon.source);
+            iteration.count_photon(y_path[size_t(s - 2)], s);
+          }
       }
 
       // The camera subpaths, one per pixel, each against its own light subpath and the grid.

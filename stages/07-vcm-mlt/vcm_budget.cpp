@@ -9,21 +9,23 @@ namespace {
 
 // Costs per unit of work, in the time of one camera subpath vertex (its ray and BSDF sample, its
 // record, and the weights of the light it hits), fitted by least squares to the time per iteration
-// of each budget on the five scenes of the chart (128 x 96 pixels, 16 iterations, one thread):
-// that fit's times were 0.59 to 1.30 of the measured ones. Measured again by
-// benchmarks/fit_vcm_costs.py they are 0.22 to 1.76, eight light subpaths a pixel underrated
-// (docs/stage7.md, section 6). A light vertex is cheap: no weights are computed along a light
-// subpath, only its splat's. It and its link to the camera come in equal numbers, so the fit
-// splits their cost evenly.
+// of each budget on the five scenes of the chart (128 x 96 pixels, 16 iterations, one thread,
+// benchmarks/fit_vcm_costs.py): the mean of two fits, whose single costs differ by up to 3x (the
+// counts come in nearly fixed proportions) while the times they predict do not. Measured a third
+// time, these predict 0.78 to 1.16 of each budget's time (docs/stage7.md, section 5). A light
+// subpath's start (its random numbers' stream, a light and a point on it) costs about what its
+// vertices do; a light vertex and its link to the camera come in equal numbers, so the fit splits
+// their cost evenly.
 constexpr double kCostCameraVertex = 1.0;
-constexpr double kCostLightPoint = 0.11;
-constexpr double kCostLightVertex = 0.077;
-constexpr double kCostCameraLink = 0.077;
-constexpr double kCostConnection = 0.17;
-constexpr double kCostMerge = 0.061;
-constexpr double kCostPhoton = 0.041;  // a light vertex put in the grid
+constexpr double kCostLightPoint = 0.12;
+constexpr double kCostLightSubpath = 0.5;
+constexpr double kCostLightVertex = 0.215;
+constexpr double kCostCameraLink = 0.215;
+constexpr double kCostConnection = 0.26;
+constexpr double kCostMerge = 0.75;
+constexpr double kCostPhoton = 0.33;  // a light vertex put in the grid
 // Without light subpaths the camera subpaths are stage 5's path tracer: per camera vertex and
-// light point, measured the same way, 0.36 to 0.46 camera vertices of VCM's.
+// light point, measured the same way, 0.39 to 0.47 camera vertices of VCM's.
 constexpr double kCostPathTracerVertex = 0.42;
 
 }  // namespace
@@ -73,10 +75,13 @@ double iteration_cost(const VcmWork& work, const VcmBudget& b) {
   const double per_light_path = double(b.light_paths);
   double cost =
       kCostCameraVertex * camera + kCostLightPoint * light_points +
-      per_light_path * (kCostLightVertex * double(work.light_vertices) + kCostCameraLink * double(work.camera_links));
+      per_light_path * (kCostLightSubpath * double(work.light_subpaths) +
+                        kCostLightVertex * double(work.light_vertices) + kCostCameraLink * double(work.camera_links));
   if (b.connect) cost += kCostConnection * double(work.connections);
-  if (b.merge != Merging::none)
-    cost += per_light_path * (kCostMerge * double(work.merges) + kCostPhoton * double(work.light_vertices));
+  if (b.merge != Merging::none) {
+    const MergeWork& m = b.connect ? work.with_connections : work.without_connections;
+    cost += per_light_path * (kCostMerge * double(m.merges) + kCostPhoton * double(m.photons));
+  }
   return cost;
 }
 

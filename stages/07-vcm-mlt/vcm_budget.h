@@ -88,15 +88,25 @@ VcmTechniques techniques_within(VcmTechniques all, const VcmBudget& b);
 // light hit can make, `on` without its merges; elsewhere `on`.
 VcmTechniques techniques_on_path(std::span<const PathDensity> path, Technique made_by, VcmTechniques on);
 
+// The merging a chosen budget would do in the first iteration, which has one light subpath per
+// pixel. A merge is needed only where the connection joining the merged vertex to its predecessor
+// on either subpath is off or cannot end there (a mirror or glass), so a budget with connections
+// merges at fewer vertices and keeps fewer photons than one without.
+struct MergeWork {
+  std::uint64_t photons = 0;  // light vertices it would put in the grid
+  std::uint64_t merges = 0;   // of those, the ones found within r of a camera vertex where it merges
+};
+
 // What the first iteration did, counted over the whole image (it runs one light subpath per pixel).
 struct VcmWork {
   std::uint64_t camera_vertices = 0;  // rays the camera subpaths traced
   std::uint64_t light_points = 0;     // next-event estimation's shadow rays
+  std::uint64_t light_subpaths = 0;   // their starts: a light and a point on it chosen
   std::uint64_t light_vertices = 0;   // rays the light subpaths traced
   std::uint64_t camera_links = 0;     // light-tracing's shadow rays to the pinhole
   std::uint64_t connections = 0;      // shadow rays between camera and light subpath vertices
-  // Light vertices found within r of the camera vertices where a chosen budget would merge.
-  std::uint64_t merges = 0;
+  MergeWork with_connections;         // a chosen budget's merging, with connections
+  MergeWork without_connections;      // and without
 };
 
 // The cost of an iteration with budget b, in camera vertices' time: each count times its cost per

@@ -43,10 +43,12 @@ TEST(VcmBudget, EachBudgetKeepsWhatTheModeAllowsOfItsTechniques) {
 // A first iteration's counts, made up.
 constexpr VcmWork kWork{.camera_vertices = 1000,
                         .light_points = 800,
+                        .light_subpaths = 900,
                         .light_vertices = 3000,
                         .camera_links = 3000,
                         .connections = 2000,
-                        .merges = 5000};
+                        .with_connections = {.photons = 1000, .merges = 5000},
+                        .without_connections = {.photons = 2500, .merges = 9000}};
 
 TEST(VcmBudget, AnIterationCostsWhatItsBudgetRuns) {
   const VcmWork& work = kWork;
@@ -62,9 +64,15 @@ TEST(VcmBudget, AnIterationCostsWhatItsBudgetRuns) {
               1e-9 * cost({8, false, Merging::where_needed}));
   EXPECT_NEAR(cost({8, true, Merging::none}) - cost({8, false, Merging::none}),
               cost({1, true, Merging::none}) - cost({1, false, Merging::none}), 1e-9 * cost({8, true, Merging::none}));
+  // A budget with connections merges at fewer vertices, one without at more: each pays for its own.
+  VcmWork unconnected_free = work;
+  unconnected_free.without_connections = {};
+  EXPECT_EQ(iteration_cost(unconnected_free, {8, true, Merging::where_needed}), cost({8, true, Merging::where_needed}));
+  EXPECT_EQ(iteration_cost(unconnected_free, {8, false, Merging::where_needed}), cost({8, false, Merging::none}));
   // Without light subpaths, nothing on the light side counts.
   VcmWork lighter = work;
-  lighter.light_vertices = lighter.camera_links = lighter.connections = lighter.merges = 0;
+  lighter.light_subpaths = lighter.light_vertices = lighter.camera_links = lighter.connections = 0;
+  lighter.with_connections = lighter.without_connections = {};
   EXPECT_EQ(iteration_cost(lighter, {0, false, Merging::none}), cost({0, false, Merging::none}));
 }
 
