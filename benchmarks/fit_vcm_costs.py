@@ -8,7 +8,7 @@ camera vertices, each budget's predicted time against its measured one, the same
 use (read from vcm_budget.cpp, one common scale fitted), and the path tracer's time per camera
 vertex and light point.
 
-    benchmarks/fit_vcm_costs.py [BUILD]        (default build/release; about four minutes)
+    benchmarks/fit_vcm_costs.py [BUILD]        (default build/release; about two minutes)
 
 Light vertices and their links to the camera come in equal numbers, so they are fitted as one cost
 (the constants split it evenly); camera vertices and light points, and light vertices and photons,
@@ -25,10 +25,11 @@ import time
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 SCENES = ["cornell-box", "caustic", "caustic-through-glass", "light-through-gap", "door-ajar"]
 WORDS = ["1", "1m", "1c", "1cm", "8", "8m", "8c", "8cm"]
-WORK = re.compile(r"work: (\d+) camera vertices, (\d+) light points, (\d+) light subpaths, (\d+) light "
-                  r"vertices, (\d+) camera links, "
-                  r"(\d+) connections; with connections (\d+) photons and (\d+) merges, without (\d+) and (\d+)")
-NAMES = ["camera vertex", "light point", "light subpath", "light vertex + link", "connection", "merge", "photon in the grid"]
+WORK = re.compile(r"work: (\d+) camera vertices, (\d+) light points, (\d+) light subpaths, "
+                  r"(\d+) light vertices, (\d+) camera links, (\d+) connections; "
+                  r"with connections (\d+) photons and (\d+) merges, without (\d+) and (\d+)")
+NAMES = ["camera vertex", "light point", "light subpath", "light vertex + link", "connection", "merge",
+         "photon in the grid"]
 CONSTANTS = ["CameraVertex", "LightPoint", "LightSubpath", "LightVertex", "CameraLink", "Connection", "Merge", "Photon"]
 
 
@@ -79,8 +80,9 @@ def main():
         cam, nee, subpaths, light, links, conn, photons_c, merges_c, photons, merges = map(float, found.groups())
         for word in WORDS:
             n, c, m = int(word[0]), "c" in word, "m" in word
-            x = [cam, nee, n * subpaths, n * (light + links), conn if c else 0.0, n * (merges_c if c else merges) if m else 0.0,
-                 n * (photons_c if c else photons) if m else 0.0]
+            # A budget with connections merges only where they cannot reach, one without at more vertices.
+            x = [cam, nee, n * subpaths, n * (light + links), conn if c else 0.0,
+                 n * (merges_c if c else merges) if m else 0.0, n * (photons_c if c else photons) if m else 0.0]
             rows.append((scene, word, x, per_iteration(program, scene, word)))
         path_tracer.append((scene, per_iteration(program, scene, "pt") / (cam + nee)))
     a = [[v / t for v in x] for _, _, x, t in rows]

@@ -32,10 +32,9 @@ void print_choice(const rt::VcmChoice& choice) {
   using namespace rt;
   const VcmWork& w = choice.work;
   std::printf(
-      "stage7: the first iteration's work: %llu camera vertices, %llu light points, %llu light subpaths, %llu light "
-      "vertices, "
-      "%llu camera links, %llu connections; with connections %llu photons and %llu merges, without %llu and "
-      "%llu\n",
+      "stage7: the first iteration's work: %llu camera vertices, %llu light points, %llu light subpaths, "
+      "%llu light vertices, %llu camera links, %llu connections; "
+      "with connections %llu photons and %llu merges, without %llu and %llu\n",
       static_cast<unsigned long long>(w.camera_vertices), static_cast<unsigned long long>(w.light_points),
       static_cast<unsigned long long>(w.light_subpaths), static_cast<unsigned long long>(w.light_vertices),
       static_cast<unsigned long long>(w.camera_links), static_cast<unsigned long long>(w.connections),
