@@ -495,13 +495,12 @@ SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const Re
       if (interrupt_requested()) break;
       const LightSubpaths all{std::span<const LightChunk>(used)};
       if (on.merge) {
-        all.photons(photons, [&](std::span<const PathVertex> path, size_t v) { return iteration.is_photon(path, v); });
+        all.photons(photons, [&](std::span<const PathVertex> path, size_t v) {
+          const bool photon = iteration.is_photon(path, v);
+          if (photon && first) iteration.count_photon(path[v - 1], int(v) + 1);
+          return photon;
+        });
         grid.assign(std::span(&photons, 1), 2.0f * radius);
-        if (first)
-          for (const Photon& photon : photons) {
-            const auto [y_path, s] = all.vertex(photon.source);
-            iteration.count_photon(y_path[size_t(s - 2)], s);
-          }
       }
 
       // The camera subpaths, one per pixel, each against its own light subpath and the grid.
