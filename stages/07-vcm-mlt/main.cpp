@@ -11,6 +11,7 @@
 #include "common/stage_program.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -46,13 +47,22 @@ void print_choice(const rt::VcmChoice& choice) {
   size_t chosen = 0;
   for (size_t b = 0; b < kVcmBudgetCount; ++b)
     if (kVcmBudgets[b] == choice.budget) chosen = b;
-  const auto product = [&](size_t b) { return choice.moments[b] * iteration_cost(choice.work, kVcmBudgets[b]); };
-  const double best = product(chosen);
+  const double best = choice.plans[chosen].product();
   for (size_t b = 0; b < kVcmBudgetCount; ++b) {
-    const double relative = product(b) / best;
+    const double relative = choice.plans[b].product() / best;
     std::printf("  %-78s %s%s\n", describe(kVcmBudgets[b]).c_str(),
                 std::isfinite(relative) ? std::to_string(relative).substr(0, 6).c_str() : "misses light",
                 b == chosen ? "  <- chosen" : "");
+  }
+  // Where the chosen budget takes more than one camera sample a pixel.
+  std::array<std::size_t, kCameraSampleChoices> pixels{};
+  for (const std::uint8_t n : choice.camera_samples)
+    for (size_t c = 0; c < kCameraSampleChoices; ++c)
+      if (n == kCameraSampleCounts[c]) ++pixels[c];
+  if (!choice.camera_samples.empty()) {
+    std::printf("stage7: camera samples a pixel per iteration:");
+    for (size_t c = 0; c < kCameraSampleChoices; ++c)
+      std::printf(" %d in %zu pixels%s", kCameraSampleCounts[c], pixels[c], c + 1 < kCameraSampleChoices ? "," : "\n");
   }
 }
 

@@ -188,7 +188,7 @@ struct LightChunk {
   std::vector<PathVertex> vertices;
   std::vector<std::uint32_t> begin{0};
   std::vector<Splat> splats;
-  std::array<double, kVcmBudgetCount> moments{};  // the splats' terms, in the first iteration
+  std::vector<BudgetTerms> terms;  // each splat's terms of the second moments, in the first iteration
   std::span<const PathVertex> path(size_t j) const {
     return std::span(vertices).subspan(begin[j], begin[j + 1] - begin[j]);
   }
@@ -266,22 +266,24 @@ class VcmIteration {
   // With `counters`, the first iteration of a chosen budget: it also counts its work and adds its
   // samples' terms to each budget's second moment. With `merges_where_needed`, merges only on the
   // paths no connection can make (vcm_budget.h).
+  // `camera_samples`: each pixel's camera samples (empty: one each).
   VcmIteration(const LightingScene& scene, const Camera& camera, const VcmOptions& options, VcmTechniques on,
-               float radius, bool merges_where_needed, WorkCounters* counters)
+               float radius, bool merges_where_needed, std::span<const std::uint8_t> camera_samples,
+               WorkCounters* counters)
       : scene_(scene),
         camera_(camera),
         options_(options),
         on_(on),
         radius_(radius),
         merges_where_needed_(merges_where_needed),
+        camera_samples_(camera_samples),
         counters_(counters),
         eye_(camera_vertex(camera)) {}
 
-  // The sample `value` of technique `made_by`, its path's densities `path`, weighted; in the first
-  // iteration of a chosen budget, its terms added to `moments`.
-  Color weighted(std::span<const PathDensity> path, Technique made_by, const VcmTechniques& on, Color value,
-                 std::span<double> moments) const {
-    if (counters_) add_budget_moments(path, made_by, on, value, moments);
+  int camera_samples_at(size_t pixel) const { return camera_samples_.empty() ? 1 : camera_samples_[pixel]; }
+
+  // The sample `value` of technique `made_by`, its path's densities `path`, weighted.
+  Color weighted(std::span<const PathDensity> path, Technique made_by, const VcmTechniques& on, Color value) const {
     return value * vcm_weight(path, made_by, merges_where_needed_ ? techniques_on_path(path, made_by, on) : on);
   }
 
@@ -311,10 +313,13 @@ class VcmIteration {
           connect_strategy(scene_, camera_, std::span(&eye_, 1), path, s, 1, nullptr, options_.walk.offset);
       if (counters_) ++counters_->camera_links;
       if (!r.film_point || r.value == Color(0.0f)) continue;
+      const std::optional<size_t> pixel = pixel_at(*r.film_point);
+      if (!pixel) continue;
       const auto densities =
           connection_densities(scene_, camera_, std::span(&eye_, 1), path, s, 1, nullptr, densities_of);
-      out.splats.push_back(
-          Splat{*r.film_point, weighted(densities, {Technique::connection, 1}, techniques, r.value, out.moments)});
+      const Technique made_by{Technique::connection, 1};
+      out.splats.push_back(Splat{*r.film_point, weighted(densities, made_by, at_pixel(techniques, *pixel), r.value)});
+      if (counters_) out.terms.push_back(budget_terms(densities, made_by, techniques, r.value));
     }
   }
 
@@ -330,9 +335,9 @@ class VcmIteration {
     return false;
   }
 
-  // The camera sample along `ray`, against light subpath `light_path` and the grid of all of them;
-  // in the first iteration of a chosen budget, each technique's terms added to `moments`.
-  Color camera_sample(const Ray& ray, Sampler& sampler, std::span<const PathVertex> light_path,
+  // A camera sample of pixel `pixel` along `ray`, against light subpath `light_path` and the grid of
+  // all of them; in the first iteration of a chosen budget, each technique's terms added to `moments`.
+  Color camera_sample(const Ray& ray, Sampler& sampler, size_t pixel, std::span<const PathVertex> light_path,
                       const LightSubpaths& all, const PhotonGrid* grid, std::vector<PathVertex>& camera_path,
                       std::span<double> moments) const {
     camera_path.assign(1, eye_);
@@ -344,7 +349,10 @@ class VcmIteration {
     DensityScratch scratch;
     Color radiance(0.0f);
     const auto weigh = [&](std::span<const PathDensity> densities, Technique made_by, const VcmTechniques& on,
-                           Color value) { return weighted(densities, made_by, on, value, moments); };
+                           Color value) {
+      if (counters_) add_budget_moments(budget_terms(densities, made_by, on, value), moments);
+      return weighted(densities, made_by, at_pixel(on, pixel), value);
+    };
     for (int t = 2; t <= int(camera_path.size()); ++t) {
       const PathVertex& z = camera_path[size_t(t - 1)];
       if (on_.hit_light && z.emitter >= 0) {
@@ -394,6 +402,20 @@ class VcmIteration {
   }
 
  private:
+  // The pixel a film point lies in, if any.
+  std::optional<size_t> pixel_at(Vec2 film_point) const {
+    const int x = int(film_point.x), y = int(film_point.y);
+    if (film_point.x < 0.0f || film_point.y < 0.0f || x >= camera_.width || y >= camera_.height) return std::nullopt;
+    return size_t(y) * size_t(camera_.width) + size_t(x);
+  }
+  // The techniques of `on` with the light-tracing samples that land in `pixel` counted per camera
+  // sample of it: N_L / (P n_p), so that the weights of every technique for a path through it sum to
+  // one (the camera samples' estimate is their mean).
+  VcmTechniques at_pixel(VcmTechniques on, size_t pixel) const {
+    on.light_paths /= float(camera_samples_at(pixel));
+    return on;
+  }
+
   // In the first iteration: the merge of camera vertex t with light vertex s (their predecessors
   // `camera_before`, `light_before`), for each chosen budget that would make it.
   void count_merge(const PathVertex& camera_before, int t, const PathVertex& light_before, int s) const {
@@ -409,26 +431,39 @@ class VcmIteration {
   VcmTechniques on_;
   float radius_;
   bool merges_where_needed_;
+  std::span<const std::uint8_t> camera_samples_;
   WorkCounters* counters_;
   PathVertex eye_;  // the pinhole's vertex, where every camera subpath starts
 };
 
-// Iteration i of a budget without light subpaths: each pixel's camera subpath, with next-event
-// estimation and the light it hits weighed by the power heuristic, is stage 5's path tracer, which
-// takes it without recording its vertices: its sample i of each pixel, written to `this_film`.
-void render_path_iteration(const LightingScene& scene, const Camera& camera, const RenderSettings& settings,
-                           const VcmOptions& options, int i, int threads, SampleGuard& guard,
-                           std::vector<Color>& this_film) {
-  const PathOptions path{.integrator = PathIntegrator::mis,
-                         .roulette_start = options.walk.roulette_start,
-                         .max_bounces = kMaxSubpathVertices - 2,
-                         .offset = options.walk.offset};
-  RenderSettings sample_i = settings;
-  sample_i.first_sample = i;
-  sample_i.spp = 1;
-  const SampleSums sums = render_path_samples(scene, camera, sample_i, path, options.camera_sampler, threads, guard);
-  for (int y = 0; y < camera.height; ++y)
-    for (int x = 0; x < camera.width; ++x) this_film[size_t(y) * size_t(camera.width) + size_t(x)] = sums.sum(x, y);
+// One iteration's camera samples: pixel p takes camera_samples[p] (one each where it is empty),
+// its sampler's points samples_taken[p] onwards, and `this_film[p]` gets their mean.
+// `radiance(pixel, k, ray, sampler, scratch)` is the pixel's camera sample k, `scratch` a vertex
+// list of the thread's own.
+template <class Radiance>
+void camera_pass(const Camera& camera, const RenderSettings& settings, SamplerKind sampler,
+                 std::span<const std::uint8_t> camera_samples, int threads, std::vector<std::uint32_t>& samples_taken,
+                 std::vector<Color>& this_film, const Radiance& radiance) {
+  const PixelFilter filter(settings.filter);
+  parallel_for_tiles(camera.width, camera.height, threads, [&](const PixelRect& tile) {
+    std::vector<PathVertex> scratch;
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x) {
+        const size_t p = size_t(y) * size_t(camera.width) + size_t(x);
+        const int samples = camera_samples.empty() ? 1 : camera_samples[p];
+        Color sum(0.0f);
+        for (int k = 0; k < samples; ++k) {
+          const auto sample = [&](const Ray& ray, auto& numbers) { return radiance(p, k, ray, numbers, scratch); };
+          const int index = int(samples_taken[p]) + k;
+          if (sampler == SamplerKind::sobol)
+            add_pixel_samples<SobolSampler>(camera, filter, settings, x, y, index, index + 1, sample, sum);
+          else
+            add_pixel_samples<Rng>(camera, filter, settings, x, y, index, index + 1, sample, sum);
+        }
+        this_film[p] = sum / float(samples);
+        samples_taken[p] += std::uint32_t(samples);
+      }
+  });
 }
 
 }  // namespace
@@ -438,11 +473,10 @@ SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const Re
                       VcmChoice* choice) {
   const int width = camera.width, height = camera.height;
   const size_t pixels = size_t(width) * size_t(height);
-  const PixelFilter filter(settings.filter);
   const float initial_radius =
       options.initial_radius > 0.0f ? options.initial_radius : default_merge_radius(scene, camera);
   std::vector<LightChunk> chunk;
-  std::vector<Color> film(pixels, Color(0.0f));     // each pixel's camera samples, summed over the iterations
+  std::vector<Color> film(pixels, Color(0.0f));     // each pixel's camera samples' mean, summed over the iterations
   std::vector<DVec3> splatted(pixels, DVec3(0.0));  // the splats landing in it, summed
   std::vector<Color> this_film(pixels);
   std::vector<DVec3> this_splatted(pixels);
@@ -455,14 +489,25 @@ SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const Re
   if (options.mode == VcmMode::vcm && options.budget) chosen.budget = *options.budget;
   VcmBudget& budget = chosen.budget;
   WorkCounters counters;
-  std::vector<double> camera_moments;  // the first iteration's, kVcmBudgetCount per pixel
+  std::vector<double> pixel_moments;  // the first iteration's, kPixelMoments per pixel
+  // Each pixel's camera samples so far: the index of its next sampler point.
+  std::vector<std::uint32_t> samples_taken(pixels, 0);
   std::uint32_t iterations = 0;
   for (int i = 0; i < settings.spp && !interrupt_requested(); ++i) {
     const bool first = choose && i == 0;
-    if (first) camera_moments.assign(pixels * kVcmBudgetCount, 0.0);
+    if (first) pixel_moments.assign(pixels * kPixelMoments, 0.0);
     std::fill(this_splatted.begin(), this_splatted.end(), DVec3(0.0));
     if (budget.light_paths == 0) {
-      render_path_iteration(scene, camera, settings, options, i, threads, guard, this_film);
+      // Each camera subpath, with next-event estimation and the light it hits weighed by the power
+      // heuristic, is stage 5's path tracer, which takes it without recording its vertices.
+      const PathOptions path{.integrator = PathIntegrator::mis,
+                             .roulette_start = options.walk.roulette_start,
+                             .max_bounces = kMaxSubpathVertices - 2,
+                             .offset = options.walk.offset};
+      camera_pass(camera, settings, options.camera_sampler, chosen.camera_samples, threads, samples_taken, this_film,
+                  [&](size_t, int, const Ray& ray, auto& numbers, std::vector<PathVertex>&) {
+                    return guard(path_radiance(scene, ray, path, numbers));
+                  });
       if (interrupt_requested()) break;
     } else {
       const float radius = merge_radius(initial_radius, i + 1, options.alpha);
@@ -474,22 +519,24 @@ SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const Re
       if (chunk.size() < size_t(chunks)) chunk.resize(size_t(chunks));
       const std::span<LightChunk> used = std::span(chunk).first(size_t(chunks));
       const VcmIteration iteration(scene, camera, options, on, radius, budget.merge == Merging::where_needed,
-                                   first ? &counters : nullptr);
+                                   chosen.camera_samples, first ? &counters : nullptr);
 
       // The light subpaths, chunk by chunk, then in one list in chunk order. Subpath j of
       // iteration i draws from stream i N_L + j: no two subpaths of a render share one, also when
-      // the first iteration's N_L differs from the rest's.
+      // the first iteration's N_L differs from the rest's. Subpath k P + p is the partner of pixel
+      // p's camera sample k (and, where the pixel takes more camera samples than there are light
+      // subpaths a pixel, of sample k + N_L / P, ...).
       parallel_for(chunks, threads, [&](int c) {
         LightChunk& out = used[size_t(c)];
         out.vertices.clear();
         out.begin.assign(1, 0);
         out.splats.clear();
-        out.moments.fill(0.0);
+        out.terms.clear();
         std::vector<PathVertex> scratch;
         const size_t begin = size_t(c) * kLightPathsPerChunk, end = std::min(light_paths, begin + kLightPathsPerChunk);
         for (size_t j = begin; j < end && !interrupt_requested(); ++j) {
           Rng rng(settings.seed, kLightStream, std::uint64_t(i) * light_paths + j);
-          iteration.trace_light_path(rng, j < pixels, scratch, out);
+          iteration.trace_light_path(rng, j / pixels < size_t(iteration.camera_samples_at(j % pixels)), scratch, out);
         }
       });
       if (interrupt_requested()) break;
@@ -503,27 +550,20 @@ SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const Re
         grid.assign(std::span(&photons, 1), 2.0f * radius);
       }
 
-      // The camera subpaths, one per pixel, each against its own light subpath and the grid.
-      const bool camera_paths = on.hit_light || on.connect || on.merge;
-      parallel_for_tiles(width, height, threads, [&](const PixelRect& tile) {
-        std::vector<PathVertex> camera_path;
-        for (int y = tile.y0; y < tile.y1; ++y)
-          for (int x = tile.x0; x < tile.x1; ++x) {
-            const size_t p = size_t(y) * size_t(width) + size_t(x);
-            const std::span<double> moments =
-                first ? std::span(camera_moments).subspan(p * kVcmBudgetCount, kVcmBudgetCount) : std::span<double>{};
-            Color sum(0.0f);
-            const auto sample = [&](const Ray& ray, Sampler& sampler) {
-              return guard(iteration.camera_sample(ray, sampler, all.path(p), all, on.merge ? &grid : nullptr,
-                                                   camera_path, moments));
-            };
-            if (camera_paths && options.camera_sampler == SamplerKind::sobol)
-              add_pixel_samples<SobolSampler>(camera, filter, settings, x, y, i, i + 1, sample, sum);
-            else if (camera_paths)
-              add_pixel_samples<Rng>(camera, filter, settings, x, y, i, i + 1, sample, sum);
-            this_film[p] = sum;
-          }
-      });
+      // The camera subpaths, n_p per pixel p, each against its own light subpath and the grid.
+      if (on.hit_light || on.connect || on.merge) {
+        camera_pass(camera, settings, options.camera_sampler, chosen.camera_samples, threads, samples_taken, this_film,
+                    [&](size_t p, int k, const Ray& ray, Sampler& numbers, std::vector<PathVertex>& camera_path) {
+                      const std::span<double> moments =
+                          first ? std::span(pixel_moments).subspan(p * kPixelMoments, kPixelMoments)
+                                : std::span<double>{};
+                      const std::span<const PathVertex> partner = all.path(size_t(k % budget.light_paths) * pixels + p);
+                      return guard(iteration.camera_sample(ray, numbers, p, partner, all, on.merge ? &grid : nullptr,
+                                                           camera_path, moments));
+                    });
+      } else {
+        std::fill(this_film.begin(), this_film.end(), Color(0.0f));
+      }
       if (interrupt_requested()) break;
       // Pixel j's light-tracing estimate is its splats' sum over the N_L / P light subpaths per
       // pixel (camera_importance.h): each iteration's splats count P / N_L times.
@@ -535,18 +575,16 @@ SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const Re
               DVec3(guard(splat.value)) / double(budget.light_paths);
         }
       if (first) {
-        // Every budget's second moment, summed in a fixed order: the pixels', then the chunks' splats.
-        std::array<double, kVcmBudgetCount> moments{};
-        for (size_t p = 0; p < pixels; ++p)
-          for (size_t b = 0; b < kVcmBudgetCount; ++b) moments[b] += camera_moments[p * kVcmBudgetCount + b];
+        // The splats' terms added to their pixels' second moments in chunk order, so that the sums
+        // do not depend on the thread count; then each budget's plan, and the best.
         for (const LightChunk& c : used)
-          for (size_t b = 0; b < kVcmBudgetCount; ++b) moments[b] += c.moments[b];
-        const VcmWork work = counters.work();
-        budget = cheapest_budget(moments, work, options.max_light_paths);
-        chosen.measured = true;
-        chosen.work = work;
-        chosen.moments = moments;
-        camera_moments = {};
+          for (size_t j = 0; j < c.splats.size(); ++j) {
+            const Vec2 film_point = c.splats[j].film_point;
+            const size_t p = size_t(film_point.y) * size_t(width) + size_t(film_point.x);
+            add_budget_moments(c.terms[j], std::span(pixel_moments).subspan(p * kPixelMoments, kPixelMoments));
+          }
+        chosen = choose_budget(pixel_moments, counters.work(), options.max_light_paths);
+        pixel_moments = {};
       }
     }
     for (size_t p = 0; p < pixels; ++p) {

@@ -40,6 +40,7 @@
 #include <iterator>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace rt {
 
@@ -109,29 +110,69 @@ struct VcmWork {
   MergeWork without_connections;      // and without
 };
 
-// The cost of an iteration with budget b, in camera vertices' time: each count times its cost per
-// unit, the light side's and the merges' times b's light subpaths per pixel.
-double iteration_cost(const VcmWork& work, const VcmBudget& b);
+// Each pixel's camera samples per iteration: a budget with light subpaths gives every pixel one of
+// these, chosen for it. One camera sample a pixel wastes a budget of eight light subpaths a pixel
+// where only the camera reaches the light (a lamp seen in a glass ball: the caustic scene's worst
+// pixels), and eight waste it where the light subpaths do the work. Grittmann et al. choose the
+// camera samples per pixel for this reason; the light subpaths stay one set for the whole image.
+inline constexpr int kCameraSampleCounts[] = {1, 2, 4, 8};
+inline constexpr size_t kCameraSampleChoices = std::size(kCameraSampleCounts);
+// A pixel's second moments, one per budget of kVcmBudgets and camera sample count: index
+// b kCameraSampleChoices + c.
+inline constexpr size_t kPixelMoments = kVcmBudgetCount * kCameraSampleChoices;
 
-// Adds one sample of the first iteration to each budget's estimated second moment (see above):
+// The cost of an iteration with budget b whose pixels take `camera_samples` camera samples each on
+// average, in camera vertices' time: each count times its cost per unit, the camera side's times
+// the camera samples, the light side's times b's light subpaths per pixel, and the merges' times
+// both (each camera sample merges with every light subpath).
+double iteration_cost(const VcmWork& work, const VcmBudget& b, double camera_samples = 1.0);
+
+// One sample of the first iteration, the terms it adds to each budget's second moment (see above).
+// The light-tracing samples that land in a pixel are the budget's N_L / P light subpaths a pixel,
+// its other techniques' samples n, the pixel's camera samples: so, relative to the first
+// iteration's mixture, q_b,n = n camera[b] + light[b], and the term is balance_squared / q_b,n.
+struct BudgetTerms {
+  double balance_squared = 0.0;  // (f / q_1)^2 q_1
+  std::array<double, kVcmBudgetCount> camera{}, light{};
+};
 // `value` is the unweighted contribution f / (n p) of technique `made_by`, `path` its densities and
 // `first` the techniques the first iteration had for it (every one the mode allows, one light
-// subpath per pixel). A budget none of whose techniques can make a path that carries light would
-// leave that light out of the image: its sum becomes infinite.
-void add_budget_moments(std::span<const PathDensity> path, Technique made_by, const VcmTechniques& first, Color value,
-                        std::span<double> sums);
+// subpath per pixel). A sample the image drops (not finite, or 0) has no terms.
+BudgetTerms budget_terms(std::span<const PathDensity> path, Technique made_by, const VcmTechniques& first, Color value);
+// Adds a sample's terms to a pixel's second moments (kPixelMoments). A budget none of whose
+// techniques can make a path that carries light would leave that light out of the image: its sum
+// becomes infinite.
+void add_budget_moments(const BudgetTerms& terms, std::span<double> sums);
+
+// A budget's plan: each pixel's camera samples per iteration (kCameraSampleCounts), and what the
+// first iteration estimates an iteration of it would leave as second moment (summed over the
+// image) and cost.
+struct BudgetPlan {
+  std::vector<std::uint8_t> camera_samples;
+  double moment = 0.0, cost = 0.0;
+  double product() const { return moment * cost; }  // what error^2 x time would be
+};
+// The camera samples per pixel that make budget b's moment times cost least, given each pixel's
+// moments (`pixel_moments`, kPixelMoments a pixel). For n_p the moment is sum_p M_p(n_p) and the
+// cost C_light + C_camera mean_p(n_p). The plan is the best of the allocations that minimise
+// moment + mu (camera samples) for some price mu of a camera sample: lowering mu from infinity
+// adds samples one pixel at a time, each pixel along the lower convex hull of its (n, M_p(n)), in
+// order of how much moment a sample saves. Where the M_p are convex in n, as a / n + c is, the
+// least product lies on that path.
+BudgetPlan plan_budget(std::span<const double> pixel_moments, const VcmWork& work, size_t b);
 
 // What the first iteration measured and chose, for the program's report and the tests.
 struct VcmChoice {
   VcmBudget budget = kEveryTechnique;  // what the iterations after the first ran
   bool measured = false;               // false: no choice was made (--budget all, another mode, 1 iteration)
-  std::array<double, kVcmBudgetCount> moments{};  // per budget of kVcmBudgets
-  VcmWork work;                                   // what the first iteration counted (iteration_cost)
+  std::array<BudgetPlan, kVcmBudgetCount> plans{};  // per budget of kVcmBudgets, without its camera samples
+  std::vector<std::uint8_t> camera_samples;         // the chosen budget's per pixel; empty: one each
+  VcmWork work;                                     // what the first iteration counted (iteration_cost)
 };
 
-// The budget whose iterations reach a given error soonest: the least second moment times cost.
-// `moments` holds one sum per budget of kVcmBudgets; budgets of more than `max_light_paths` light
-// subpaths per pixel are left out. kEveryTechnique if no product is finite.
-VcmBudget cheapest_budget(std::span<const double> moments, const VcmWork& work, int max_light_paths);
+// The plan (camera samples per pixel included) of each budget, and the budget whose iterations reach
+// a given error soonest: the least second moment times cost. Budgets of more than `max_light_paths`
+// light subpaths per pixel are left out; kEveryTechnique if no product is finite.
+VcmChoice choose_budget(std::span<const double> pixel_moments, const VcmWork& work, int max_light_paths);
 
 }  // namespace rt

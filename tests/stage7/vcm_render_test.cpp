@@ -229,7 +229,64 @@ TEST(VcmCaustic, ABudgetChosenBehindGlassKeepsItsMergesAndFindsTheCaustic) {
   // joins to the light (measured: 1,333 and 3,576 photons of 17,302 light vertices).
   EXPECT_LT(2 * unconnected_photons, light_vertices);
   const double expected = grey(mean_over(reference, kCausticRegion));
-  EXPECT_NEAR(grey(mean_over(render_mode(s, chosen_budget(), 16, 3), kCausticRegion)), expected, 0.1 * expected);
+  EXPECT_NEAR(grey(mean_over(render_mode(s, chosen_budget(), 16, 5), kCausticRegion)), expected, 0.1 * expected);
+}
+
+TEST(VcmCaustic, EachPixelTakesTheCameraSamplesItsLightNeedsAndStaysUnbiased) {
+  // On the caustic scene the chosen budget has eight light subpaths a pixel. Inside the glass ball
+  // only camera subpaths reach the light (the lamp and the floor seen through it): those pixels
+  // take eight camera samples an iteration; on the floor's caustic the light subpaths do the work,
+  // and its pixels keep about one.
+  static const testing::LoadedScene s("assets/scenes/caustic.json", 128, 96);
+  const auto [samples, samples_two_threads] = testing::subject([&] {
+    const VcmChoice one = choice_of(s, 2, 1), two = choice_of(s, 2, 2);
+    return std::make_pair(std::vector<int>(one.camera_samples.begin(), one.camera_samples.end()),
+                          std::vector<int>(two.camera_samples.begin(), two.camera_samples.end()));
+  });
+  ASSERT_EQ(samples.size(), size_t(s.camera.width) * size_t(s.camera.height));
+  EXPECT_EQ(samples, samples_two_threads);
+  const auto mean_samples = [&](const PixelRect& r) {
+    double sum = 0.0;
+    for (int y = r.y0; y < r.y1; ++y)
+      for (int x = r.x0; x < r.x1; ++x) sum += samples[size_t(y) * size_t(s.camera.width) + size_t(x)];
+    return sum / double((r.x1 - r.x0) * (r.y1 - r.y0));
+  };
+  constexpr PixelRect kInsideBall{64, 17, 76, 24};  // around the lamp's image in the ball
+  EXPECT_GT(mean_samples(kInsideBall), 6.0);        // measured 6.9
+  EXPECT_LT(mean_samples(kCausticRegion), 1.25);    // measured 1.075
+  // Each pixel's estimate is its camera samples' mean plus the splats landing there, weighed with
+  // its own camera samples: over the pixels of each camera sample count (this render's own choice)
+  // the image finds the reference. The groups are picked by the first iteration, whose estimate is
+  // one sixteenth of the image: pixels whose first sample came out low keep one camera sample, so
+  // that group reads some 0.7 % low. Measured, seeds 5, 6, 7: within 1.2 % of the reference where
+  // pixels take one to four, within 2.3 % where they take eight (the ball, the reference's noisiest
+  // part).
+  const auto [image, chosen] = testing::subject([&] {
+    RenderSettings settings;
+    settings.width = s.camera.width;
+    settings.height = s.camera.height;
+    settings.spp = 16;
+    settings.seed = 5;
+    SampleGuard guard;
+    VcmChoice choice;
+    const Image mean = render_vcm(s.scene, s.camera, settings, chosen_budget(), 2, guard, nullptr, &choice).mean();
+    return std::make_pair(mean, std::vector<int>(choice.camera_samples.begin(), choice.camera_samples.end()));
+  });
+  ASSERT_EQ(chosen.size(), samples.size());
+  const Image reference = read_pfm(testing::source_path("assets/references/caustic-128x96.pfm"));
+  for (const int n : kCameraSampleCounts) {
+    double rendered = 0.0, expected = 0.0;
+    int pixels = 0;
+    for (int y = 0; y < s.camera.height; ++y)
+      for (int x = 0; x < s.camera.width; ++x)
+        if (chosen[size_t(y) * size_t(s.camera.width) + size_t(x)] == n) {
+          rendered += grey(DVec3(image.at(x, y)));
+          expected += grey(DVec3(reference.at(x, y)));
+          ++pixels;
+        }
+    ASSERT_GT(pixels, 500) << n << " camera samples";
+    EXPECT_NEAR(rendered / expected, 1.0, n == 8 ? 0.06 : 0.03) << n << " camera samples, " << pixels << " pixels";
+  }
 }
 
 }  // namespace

@@ -120,8 +120,11 @@ TEST(VcmWeight, EveryTechniqueOfARandomPathIsThePowerHeuristicAndTheySumToOne) {
     const VcmMode mode = kVcmModes[size_t(n / 5) % 4];
     VcmTechniques on = techniques_of(mode);
     on.eta = std::pow(10.0f, log_eta(random));
-    // Some with eight light subpaths per pixel, some without next-event estimation (a budget's).
+    // Some with eight light subpaths per pixel, some in pixels that take several camera samples
+    // (light tracing's samples per camera sample N_L / (P n_p): 8 / 4, 1 / 8), some without
+    // next-event estimation (a budget's).
     if (n % 3 == 1) on.light_paths = 8.0f;
+    if (n % 3 == 2) on.light_paths = n % 2 ? 2.0f : 0.125f;
     if (n % 7 == 2) on.next_event = false;
     std::vector<PathDensity> path = random_path(random, k);
     cases.emplace_back("path " + std::to_string(n) + " (" + mode_name(mode) + ", k = " + std::to_string(k) + ")",
