@@ -54,7 +54,7 @@ void print_choice(const rt::VcmChoice& choice) {
                 std::isfinite(relative) ? std::to_string(relative).substr(0, 6).c_str() : "misses light",
                 b == chosen ? "  <- chosen" : "");
   }
-  // Where the chosen budget takes more than one camera sample a pixel.
+  // How many pixels take each count of camera samples in the chosen budget's plan.
   std::array<std::size_t, kCameraSampleChoices> pixels{};
   for (const std::uint8_t n : choice.camera_samples)
     for (size_t c = 0; c < kCameraSampleChoices; ++c)
@@ -107,7 +107,9 @@ int main(int argc, char** argv) {
         budget_words.push_back(budget_word(kEveryTechnique));
         flags.add_word("--budget", budget, budget_words,
                        "vcm: auto (the default): the first iteration runs every technique and estimates which "
-                       "budget the rest should run for the least error in their time; all: every iteration runs "
+                       "budget the rest should run, and how many camera samples (1, 2, 4, 8) each pixel takes per "
+                       "iteration, for the least error in their time; a budget given takes one a pixel; all: every "
+                       "iteration runs "
                        "every technique, one light subpath per pixel, merges everywhere, as Georgiev et al. "
                        "publish it; pt: no light subpaths (path tracing); 1, 8: that many light subpaths per "
                        "pixel, c: with connections, m: with merges where only they reach (1cm, 8m, ...)");

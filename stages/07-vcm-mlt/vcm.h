@@ -1,7 +1,8 @@
 // Stage 7: vertex connection and merging (vcm_weight.h has the estimator's weights). An iteration
 // traces N light subpaths (one per pixel, or as many as its budget asks: vcm_budget.h), connects
 // each light vertex to the camera (light tracing, splatted), and stores the vertices in stage 6's
-// photon grid; then one camera subpath per pixel, and at each of its vertices z:
+// photon grid; then one camera subpath per pixel (or as many as the budget's plan gives the pixel),
+// and at each of its vertices z:
 //   - the light it hits (s = 0), a fresh light point (s = 1, next-event estimation), and the
 //     connections to every vertex of its own pixel's light subpath (stage 6's BDPT strategies);
 //   - a merge with every light vertex y within r of z: z's throughput, f at z, y's throughput,
@@ -38,8 +39,8 @@ struct VcmOptions {
   // camera's first hits (default_merge_radius).
   float initial_radius = 0.0f;
   float alpha = 0.75f;  // the radius's shrink exponent; SPPM's alpha, as Knaus & Zwicker show
-  // The camera subpaths' numbers: stage 5's scrambled Sobol points, iteration i taking point i of
-  // its pixel, so that the iterations stratify each pixel's area, its next-event light points and
+  // The camera subpaths' numbers: stage 5's scrambled Sobol points, each pixel's camera samples
+  // taking its points in order, so that the iterations stratify its area, its next-event light points and
   // its first bounces as stage 5's path tracer does; or independent numbers, as stage 6's BDPT
   // draws them. The light subpaths are shared by all pixels and stay independent.
   SamplerKind camera_sampler = SamplerKind::sobol;
@@ -91,7 +92,7 @@ inline constexpr std::uint64_t kVcmBytesPerPixel = 2560;
 int check_vcm_fits(const SceneDescription& description, const RenderSettings& settings, const MemoryLimit& limit);
 
 // Per pixel of the image: the sum over the finished iterations of each one's estimate (its camera
-// sample, its merges, and the light-tracing splats landing there), and their number. The same bit for
+// samples' mean, their merges included, and the light-tracing splats landing there), and their number. The same bit for
 // bit for any thread count: light subpaths are traced in fixed chunks, their splats and photons
 // taken in chunk order, and the grid visited in its fixed order. A stop request ends it between
 // iterations (one cut short is dropped). The box filter only (a splat lands in one pixel). With

@@ -5,7 +5,8 @@
 // light subpath per pixel is too few. So, after the idea of Grittmann, Yazici, Georgiev &
 // Slusallek ("Efficiency-Aware Multiple Importance Sampling for Bidirectional Rendering
 // Algorithms", SIGGRAPH 2022), the first iteration runs every technique and estimates, for each of
-// a few budgets, what an iteration of it would cost and how noisy it would be, and the remaining
+// a few budgets, what an iteration of it would cost and how noisy it would be, with each pixel's
+// camera samples per iteration chosen for it (as Grittmann et al. choose them), and the remaining
 // iterations run the budget with the least error for their time.
 //
 // Noise. With the balance heuristic an iteration's pixel estimate combines the techniques t, each
@@ -13,7 +14,7 @@
 // moment is the integral of f^2 / q. The first iteration's samples come from the mixture q_1 of
 // every technique, so for a budget b with mixture q_b
 //     M_b = integral f^2 / q_b = E_1[(f / q_1)^2 q_1 / q_b],
-// each sample's balance-weighted contribution squared times q_1 / q_b, summed over the image. The
+// each sample's balance-weighted contribution squared times q_1 / q_b, summed per pixel. The
 // render weighs by the power heuristic; both heuristics are close to the best combination (Veach's
 // thesis, chapter 9), and only the budgets' order matters here.
 //
