@@ -141,7 +141,9 @@ Color merge_contribution(std::span<const PathVertex> camera_path, std::span<cons
 int check_vcm_fits(const SceneDescription& description, const RenderSettings& settings, const MemoryLimit& limit) {
   const double pixels = double(settings.width) * double(settings.height);
   const auto needs = [&](int light_paths) -> OtherMemory {
-    const std::uint64_t per_pixel = kBytesPerPixel + std::uint64_t(light_paths) * kVcmBytesPerPixel;
+    const std::uint64_t per_pixel =
+        kBytesPerPixel + std::max(std::uint64_t(light_paths) * kVcmBytesPerPixel,
+                                  kVcmBytesPerPixel + kVcmChoiceBytesPerPixel);  // the first iteration's
     return {pixels * double(per_pixel),
             "the image with an iteration's light subpaths, " + std::to_string(per_pixel) + " bytes a pixel"};
   };
@@ -265,8 +267,8 @@ class VcmIteration {
  public:
   // With `counters`, the first iteration of a chosen budget: it also counts its work and adds its
   // samples' terms to each budget's second moment. With `merges_where_needed`, merges only on the
-  // paths no connection can make (vcm_budget.h).
-  // `camera_samples`: each pixel's camera samples (empty: one each).
+  // paths no connection can make (vcm_budget.h). `camera_samples`: each pixel's camera samples an
+  // iteration (empty: one each).
   VcmIteration(const LightingScene& scene, const Camera& camera, const VcmOptions& options, VcmTechniques on,
                float radius, bool merges_where_needed, std::span<const std::uint8_t> camera_samples,
                WorkCounters* counters)

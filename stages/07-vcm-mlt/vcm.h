@@ -87,8 +87,11 @@ Color merge_contribution(std::span<const PathVertex> camera_path, std::span<cons
 // vertex some 270 bytes with its BSDF), their photons and splats, measured as peak resident memory
 // (/usr/bin/time, 128^2 and 512^2 pixels): 1.4 KiB a pixel in the Cornell box, 2.1 in the closed
 // bright room of light-through-gap.json (longer subpaths), 0.75 in the caustic scene; 2.5 KiB
-// covers them.
+// covers them. The first iteration, with one light subpath a pixel, also holds what its choice
+// reads: each pixel's second moments (kPixelMoments doubles, 288 bytes) and each splat's terms
+// (BudgetTerms, 152 bytes; up to 5 splats a pixel, in the door-ajar scene), some 1.1 KiB a pixel.
 inline constexpr std::uint64_t kVcmBytesPerPixel = 2560;
+inline constexpr std::uint64_t kVcmChoiceBytesPerPixel = 1280;
 int check_vcm_fits(const SceneDescription& description, const RenderSettings& settings, const MemoryLimit& limit);
 
 // Per pixel of the image: the sum over the finished iterations of each one's estimate (its camera

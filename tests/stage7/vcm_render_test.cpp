@@ -4,6 +4,7 @@
 // the pane of glass that no connection can, the radius shrinks by Knaus & Zwicker's rule, and the
 // image is the same bit for bit for any thread count.
 #include "07-vcm-mlt/vcm.h"
+#include "common/error.h"
 #include "common/image_io.h"
 
 #include "stage6/cornell_regions.h"
@@ -287,6 +288,23 @@ TEST(VcmCaustic, EachPixelTakesTheCameraSamplesItsLightNeedsAndStaysUnbiased) {
     ASSERT_GT(pixels, 500) << n << " camera samples";
     EXPECT_NEAR(rendered / expected, 1.0, n == 8 ? 0.06 : 0.03) << n << " camera samples, " << pixels << " pixels";
   }
+}
+
+TEST(VcmMemory, EightLightSubpathsAPixelWhereTheyFitOneWhereOnlyTheFirstIterationDoes) {
+  // A 4096^2 image of the Cornell box (its scene a few MiB): eight light subpaths a pixel need
+  // kBytesPerPixel + 8 x 2.5 KiB a pixel (344 GB), one needs the first iteration's 2.5 KiB and what
+  // its choice reads, 1.25 KiB (65 GB); without the choice's share it would be 44 GB.
+  const testing::LoadedScene& c = testing::cornell_box<40, 30>();
+  RenderSettings settings;
+  settings.width = settings.height = 4096;
+  const auto fits = [&](double gigabytes) {
+    return check_vcm_fits(c.description, settings,
+                          MemoryLimit{std::uint64_t(gigabytes * 1e9), MemoryLimit::Source::machine});
+  };
+  EXPECT_EQ(fits(400.0), 8);
+  EXPECT_EQ(fits(100.0), 1);
+  EXPECT_THROW(fits(55.0), InputError);
+  EXPECT_THROW(fits(10.0), InputError);
 }
 
 }  // namespace
