@@ -167,6 +167,18 @@ constexpr std::uint64_t kLightStream = ~std::uint64_t(0);
 
 using DensityScratch = std::array<PathDensity, 2 * kMaxSubpathVertices>;
 
+// Pixel p's camera samples an iteration, of a plan's (`camera_samples`; empty: one each).
+int camera_samples_at(std::span<const std::uint8_t> camera_samples, size_t pixel) {
+  return camera_samples.empty() ? 1 : camera_samples[pixel];
+}
+
+// The pixel a film point lies in, if any: where a splat lands.
+std::optional<size_t> pixel_of(const Camera& camera, Vec2 film_point) {
+  const int x = int(film_point.x), y = int(film_point.y);
+  if (film_point.x < 0.0f || film_point.y < 0.0f || x >= camera.width || y >= camera.height) return std::nullopt;
+  return size_t(y) * size_t(camera.width) + size_t(x);
+}
+
 // The techniques that can make a path of k + 1 vertices. The light's own point seen by the pinhole
 // (k = 1: x_0 the pinhole, x_1 on the light) is splatted only where the camera's own rays cannot
 // do better. Inside a lamp's image the camera's ray sees a constant emitter without noise, while
@@ -282,7 +294,7 @@ class VcmIteration {
         counters_(counters),
         eye_(camera_vertex(camera)) {}
 
-  int camera_samples_at(size_t pixel) const { return camera_samples_.empty() ? 1 : camera_samples_[pixel]; }
+  int camera_samples_at(size_t pixel) const { return rt::camera_samples_at(camera_samples_, pixel); }
 
   // The sample `value` of technique `made_by`, its path's densities `path`, weighted.
   Color weighted(std::span<const PathDensity> path, Technique made_by, const VcmTechniques& on, Color value) const {
@@ -315,7 +327,7 @@ class VcmIteration {
           connect_strategy(scene_, camera_, std::span(&eye_, 1), path, s, 1, nullptr, options_.walk.offset);
       if (counters_) ++counters_->camera_links;
       if (!r.film_point || r.value == Color(0.0f)) continue;
-      const std::optional<size_t> pixel = pixel_at(*r.film_point);
+      const std::optional<size_t> pixel = pixel_of(camera_, *r.film_point);
       if (!pixel) continue;
       const auto densities =
           connection_densities(scene_, camera_, std::span(&eye_, 1), path, s, 1, nullptr, densities_of);
@@ -404,12 +416,6 @@ class VcmIteration {
   }
 
  private:
-  // The pixel a film point lies in, if any.
-  std::optional<size_t> pixel_at(Vec2 film_point) const {
-    const int x = int(film_point.x), y = int(film_point.y);
-    if (film_point.x < 0.0f || film_point.y < 0.0f || x >= camera_.width || y >= camera_.height) return std::nullopt;
-    return size_t(y) * size_t(camera_.width) + size_t(x);
-  }
   // The techniques of `on` with the light-tracing samples that land in `pixel` counted per camera
   // sample of it: N_L / (P n_p), so that the weights of every technique for a path through it sum to
   // one (the camera samples' estimate is their mean).
@@ -452,7 +458,7 @@ void camera_pass(const Camera& camera, const RenderSettings& settings, SamplerKi
     for (int y = tile.y0; y < tile.y1; ++y)
       for (int x = tile.x0; x < tile.x1; ++x) {
         const size_t p = size_t(y) * size_t(camera.width) + size_t(x);
-        const int samples = camera_samples.empty() ? 1 : camera_samples[p];
+        const int samples = camera_samples_at(camera_samples, p);
         Color sum(0.0f);
         for (int k = 0; k < samples; ++k) {
           const auto sample = [&](const Ray& ray, auto& numbers) { return radiance(p, k, ray, numbers, scratch); };
@@ -568,23 +574,17 @@ SampleSums render_vcm(const LightingScene& scene, const Camera& camera, const Re
       }
       if (interrupt_requested()) break;
       // Pixel j's light-tracing estimate is its splats' sum over the N_L / P light subpaths per
-      // pixel (camera_importance.h): each iteration's splats count P / N_L times.
+      // pixel (camera_importance.h): each iteration's splats count P / N_L times. In the first
+      // iteration their terms go to their pixels' second moments, in chunk order, so that the sums
+      // do not depend on the thread count. (A light subpath keeps only splats that land in a pixel.)
       for (const LightChunk& c : used)
-        for (const Splat& splat : c.splats) {
-          const int x = int(splat.film_point.x), y = int(splat.film_point.y);
-          if (x < 0 || x >= width || y < 0 || y >= height) continue;
-          this_splatted[size_t(y) * size_t(width) + size_t(x)] +=
-              DVec3(guard(splat.value)) / double(budget.light_paths);
+        for (size_t j = 0; j < c.splats.size(); ++j) {
+          const size_t p = *pixel_of(camera, c.splats[j].film_point);
+          this_splatted[p] += DVec3(guard(c.splats[j].value)) / double(budget.light_paths);
+          if (first) add_budget_moments(c.terms[j], std::span(pixel_moments).subspan(p * kPixelMoments, kPixelMoments));
         }
       if (first) {
-        // The splats' terms added to their pixels' second moments in chunk order, so that the sums
-        // do not depend on the thread count; then each budget's plan, and the best.
-        for (const LightChunk& c : used)
-          for (size_t j = 0; j < c.splats.size(); ++j) {
-            const Vec2 film_point = c.splats[j].film_point;
-            const size_t p = size_t(film_point.y) * size_t(width) + size_t(film_point.x);
-            add_budget_moments(c.terms[j], std::span(pixel_moments).subspan(p * kPixelMoments, kPixelMoments));
-          }
+        // Each budget's plan, and the best.
         chosen = choose_budget(pixel_moments, counters.work(), options.max_light_paths);
         pixel_moments = {};
       }
